@@ -1,0 +1,57 @@
+// The message bus as an injectable interface. Nodes talk only to a Bus, so the same node runs
+// over udpm:// (separate processes or hosts), memq:// (one process, the fused arena) or a log.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace ahhs::bus {
+
+// Thrown by bus constructors for an unusable URL or transport; never thrown from Handle().
+class BusError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Receives one raw message. `data` is valid only during the call.
+using RawHandler =
+    std::function<void(const std::string& channel, const std::uint8_t* data, std::size_t size)>;
+
+// Messages a subscription buffers between two Handle() calls before the oldest are dropped.
+// LCM's own default is 30, far too few for a lockstep tick with many modules.
+inline constexpr int kDefaultQueueCapacity = 10000;
+
+// Counters of one bus, for diagnostics and tests.
+struct BusStats {
+  std::uint64_t published = 0;  // messages handed to the transport
+  std::uint64_t publish_failures = 0;
+  std::uint64_t dispatched = 0;      // messages passed to a handler
+  std::uint64_t handler_errors = 0;  // handlers that threw (caught, counted, message dropped)
+};
+
+class Bus {
+ public:
+  virtual ~Bus() = default;
+
+  // Publishes `size` bytes on `channel`. Returns false when the transport refused them.
+  virtual bool Publish(const std::string& channel, const void* data, std::size_t size) = 0;
+
+  // Subscribes `handler` to every channel matching the regular expression `channel_regex`
+  // (LCM semantics: the whole channel name must match). Returns a subscription id.
+  virtual int Subscribe(const std::string& channel_regex, RawHandler handler,
+                        int queue_capacity = kDefaultQueueCapacity) = 0;
+  virtual void Unsubscribe(int subscription_id) = 0;
+
+  // Waits at most `timeout` for a message, then dispatches every message already waiting.
+  // Returns the number of messages dispatched (0 on timeout). Handlers that throw are caught
+  // and counted in stats().handler_errors.
+  virtual int Handle(std::chrono::microseconds timeout) = 0;
+
+  virtual const BusStats& stats() const = 0;
+};
+
+}  // namespace ahhs::bus

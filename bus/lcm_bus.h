@@ -1,0 +1,55 @@
+// Bus over LCM, for any LCM URL: udpm://GROUP:PORT?ttl=0&recv_buf_size=N, memq://, file://...
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "bus/bus.h"
+
+namespace lcm {
+class LCM;
+class ReceiveBuffer;
+class Subscription;
+}  // namespace lcm
+
+namespace ahhs::bus {
+
+class LcmBus final : public Bus {
+ public:
+  // Throws BusError when LCM cannot open `url` (bad syntax, no multicast route, ...).
+  explicit LcmBus(const std::string& url);
+  ~LcmBus() override;
+  LcmBus(const LcmBus&) = delete;
+  LcmBus& operator=(const LcmBus&) = delete;
+
+  bool Publish(const std::string& channel, const void* data, std::size_t size) override;
+  int Subscribe(const std::string& channel_regex, RawHandler handler,
+                int queue_capacity = kDefaultQueueCapacity) override;
+  void Unsubscribe(int subscription_id) override;
+  int Handle(std::chrono::microseconds timeout) override;
+  const BusStats& stats() const override { return stats_; }
+
+  const std::string& url() const { return url_; }
+
+ private:
+  struct Entry {
+    RawHandler handler;
+    lcm::Subscription* subscription = nullptr;
+    LcmBus* bus = nullptr;
+  };
+  static void OnMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel, Entry* entry);
+
+  std::string url_;
+  std::unique_ptr<lcm::LCM> lcm_;
+  std::map<int, std::unique_ptr<Entry>> entries_;
+  int next_id_ = 1;
+  BusStats stats_;
+};
+
+// The URL used when none is given: host-only multicast (ttl=0) with a receive buffer large
+// enough for a lockstep burst.
+inline constexpr const char* kDefaultLcmUrl =
+    "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+
+}  // namespace ahhs::bus

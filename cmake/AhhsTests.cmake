@@ -1,0 +1,33 @@
+# Test helpers. Labels: unit (in-process, memq://), multiprocess (real processes over udpm:// in a
+# private network namespace), lan (network-namespace hosts joined by veth), style.
+# Tests that cannot run here (no namespaces, not root) exit 77 and CTest reports them skipped.
+
+set(AHHS_SKIP_RETURN_CODE 77)
+
+# ahhs_add_catch_test(NAME name SOURCES ... [LIBS ...] [LABELS ...])
+# One executable; every Catch2 TEST_CASE becomes its own CTest test.
+function(ahhs_add_catch_test)
+  cmake_parse_arguments(ARG "" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
+  if(NOT ARG_LABELS)
+    set(ARG_LABELS unit)
+  endif()
+  add_executable(${ARG_NAME} ${ARG_SOURCES})
+  target_link_libraries(${ARG_NAME} PRIVATE ahhs_catch_main ${ARG_LIBS} ahhs_warnings)
+  catch_discover_tests(${ARG_NAME}
+    TEST_PREFIX "${ARG_NAME}:"
+    WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}
+    PROPERTIES LABELS "${ARG_LABELS}" SKIP_RETURN_CODE ${AHHS_SKIP_RETURN_CODE}
+               ENVIRONMENT "AHHS_SOURCE_DIR=${PROJECT_SOURCE_DIR};AHHS_BINARY_DIR=${PROJECT_BINARY_DIR}")
+endfunction()
+
+# ahhs_add_script_test(NAME name COMMAND ... LABELS ... [TIMEOUT s])
+function(ahhs_add_script_test)
+  cmake_parse_arguments(ARG "" "NAME;TIMEOUT" "COMMAND;LABELS" ${ARGN})
+  if(NOT ARG_TIMEOUT)
+    set(ARG_TIMEOUT 300)
+  endif()
+  add_test(NAME ${ARG_NAME} COMMAND ${ARG_COMMAND})
+  set_tests_properties(${ARG_NAME} PROPERTIES
+    LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT} SKIP_RETURN_CODE ${AHHS_SKIP_RETURN_CODE}
+    ENVIRONMENT "AHHS_SOURCE_DIR=${PROJECT_SOURCE_DIR};AHHS_BINARY_DIR=${PROJECT_BINARY_DIR}")
+endfunction()

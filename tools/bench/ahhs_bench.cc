@@ -10,6 +10,8 @@
 
 #include "modules/core/hormone_system.h"
 #include "modules/core/variation.h"
+#include "sim/core/drive.h"
+#include "sim/core/scenario.h"
 
 namespace am = ahhs::modules;
 using Clock = std::chrono::steady_clock;
@@ -63,6 +65,39 @@ void BenchController(const ControllerCase& c, bool smooth, long ticks, int repea
               static_cast<double>(fired) / static_cast<double>(ticks));
 }
 
+// Wall time of physics-only episodes with the built-in drive, one core.
+void BenchSim(const ahhs::sim::ScenarioConfig& config, const char* drive_name, int repeats,
+              std::uint64_t seed) {
+  namespace as = ahhs::sim;
+  const as::DriveKind drive = as::ParseDrive(drive_name);
+  auto sim = as::MakeScenario(config);
+  std::vector<double> walls;
+  std::vector<double> command(static_cast<std::size_t>(sim->num_actuators()));
+  double fitness = 0;
+  for (int rep = 0; rep < repeats; ++rep) {
+    const auto t0 = Clock::now();
+    sim->Reset(seed);
+    while (true) {
+      for (int c = 0; c < sim->num_compartments(); ++c) {
+        as::DriveCommand(drive, *sim, c, command.data());
+        sim->SetActuators(c, command.data());
+      }
+      if (sim->Step() != as::StepStatus::kRunning) break;
+    }
+    walls.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    fitness = sim->Fitness();
+  }
+  std::sort(walls.begin(), walls.end());
+  const double median = walls[walls.size() / 2];
+  std::printf(
+      "%-8s %-6s %-6s %2d modules %6.1f s simulated: %7.1f ms wall (min %.1f, max %.1f), "
+      "%5.0fx real time, fitness %.4f\n",
+      as::ScenarioName(config.kind),
+      config.kind == as::ScenarioKind::kGait ? as::JointsName(config.joints) : "-", drive_name,
+      sim->num_compartments(), sim->sim_time(), 1e3 * median, 1e3 * walls.front(),
+      1e3 * walls.back(), sim->sim_time() / median, fitness);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -81,7 +116,29 @@ int main(int argc, char** argv) {
   controller->add_option("--seed", seed, "genome seed")->capture_default_str();
   std::string only;
   controller->add_option("--only", only, "run only the cases whose name contains this text");
+  auto* sim = app.add_subcommand("sim", "physics-only episodes with built-in drives");
+  int sim_repeats = 5;
+  sim->add_option("--repeats", sim_repeats, "repeats (the median is reported)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  sim->add_option("--seed", seed, "episode seed")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+
+  if (sim->parsed()) {
+    namespace as = ahhs::sim;
+    std::printf("physics-only episodes, median of %d, seed %llu\n", sim_repeats,
+                static_cast<unsigned long long>(seed));
+    for (const char* drive : {"wave", "zero"}) {
+      for (as::Joints joints : {as::Joints::kDamped, as::Joints::kFixed}) {
+        as::ScenarioConfig gait;
+        gait.joints = joints;
+        BenchSim(gait, drive, sim_repeats, seed);
+      }
+    }
+    as::ScenarioConfig pendulum;
+    pendulum.kind = as::ScenarioKind::kPendulum;
+    BenchSim(pendulum, "wave", sim_repeats, seed);
+  }
 
   if (controller->parsed()) {
     const ControllerCase cases[] = {

@@ -1,0 +1,429 @@
+#include "sim/core/gait.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+
+namespace ahhs::sim {
+namespace {
+
+// Every geom's data pointer holds its module id + 1 (0 = scenery), so contacts and rays can
+// tell a module's own geometry.
+void* Tag(int module) { return reinterpret_cast<void*>(static_cast<std::intptr_t>(module + 1)); }
+int ModuleOf(dGeomID g) {
+  return static_cast<int>(reinterpret_cast<std::intptr_t>(dGeomGetData(g))) - 1;
+}
+
+// Contact points per colliding pair. Box on plane needs all 4 corners: with 3 the chain found
+// a way to "swim" (fitness 4.7 from a plain wave), with 2 it tips; measured, not guessed.
+constexpr int kMaxContacts = 4;
+
+// ODE reports internal errors (e.g. a NaN quaternion) through these handlers and aborts the
+// process when they return. Throwing instead lets Step() end the episode with an error.
+struct OdeError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+[[noreturn]] void ThrowOdeError(int num, const char* msg, va_list ap) {
+  char text[512];
+  std::vsnprintf(text, sizeof text, msg, ap);
+  throw OdeError("ODE error " + std::to_string(num) + ": " + text);
+}
+void IgnoreOdeMessage(int, const char*, va_list) {}
+
+void InitOdeOnce() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    dInitODE2(0);
+    dSetErrorHandler(&ThrowOdeError);
+    dSetDebugHandler(&ThrowOdeError);
+    dSetMessageHandler(&IgnoreOdeMessage);
+  });
+}
+
+}  // namespace
+
+// A point given in a geom's own frame, in world coordinates (works for offset geoms).
+void GeomPointToWorld(dGeomID g, const double local[3], dVector3 out) {
+  const dReal* p = dGeomGetPosition(g);
+  const dReal* r = dGeomGetRotation(g);  // row-major 3x4
+  for (int k = 0; k < 3; ++k)
+    out[k] = p[k] + r[4 * k] * local[0] + r[4 * k + 1] * local[1] + r[4 * k + 2] * local[2];
+}
+void GeomVectorToWorld(dGeomID g, const double local[3], dVector3 out) {
+  const dReal* r = dGeomGetRotation(g);
+  for (int k = 0; k < 3; ++k)
+    out[k] = r[4 * k] * local[0] + r[4 * k + 1] * local[1] + r[4 * k + 2] * local[2];
+}
+
+double GaitFitness(double displacement, const GaitConstants& k) {
+  return displacement / (k.wall_inner / k.fitness_wall_score);
+}
+
+GaitScenario::GaitScenario(const ScenarioConfig& config, GaitConstants constants)
+    : k_(constants), num_modules_(config.num_modules), joints_(config.joints) {
+  InitOdeOnce();
+  const double duration = config.duration > 0 ? config.duration : k_.duration;
+  total_ticks_ = static_cast<std::int64_t>(std::llround(duration / k_.control_period));
+  Reset(0);
+}
+
+GaitScenario::~GaitScenario() { Destroy(); }
+
+void GaitScenario::Destroy() {
+  if (ray_) dGeomDestroy(ray_);
+  if (contacts_) dJointGroupDestroy(contacts_);
+  if (space_) dSpaceDestroy(space_);  // destroys the geoms in it
+  if (world_) dWorldDestroy(world_);  // destroys bodies and joints
+  ray_ = nullptr;
+  contacts_ = nullptr;
+  space_ = nullptr;
+  world_ = nullptr;
+  modules_.clear();
+  docks_.clear();
+  scenery_.clear();
+}
+
+void GaitScenario::Reset(std::uint64_t seed) {
+  // A fresh world every episode, and ODE's global solver seed from the episode seed: the same
+  // seed and commands give the same bits.
+  Destroy();
+  dRandSetSeed(static_cast<unsigned long>(seed));
+  Build();
+  tick_ = 0;
+  error_.clear();
+  start_centroid_ = Centroid();
+  SampleSensors();
+}
+
+void GaitScenario::Build() {
+  world_ = dWorldCreate();
+  dWorldSetGravity(world_, 0, 0, -k_.gravity);
+  dWorldSetQuickStepNumIterations(world_, k_.solver_iterations);
+  dWorldSetERP(world_, k_.world_erp);
+  dWorldSetCFM(world_, k_.world_cfm);
+  space_ = dSimpleSpaceCreate(nullptr);
+  contacts_ = dJointGroupCreate(0);
+
+  // Scenery: ground, the square wall (inner faces at +-wall_inner), 8 cubes outside it.
+  scenery_.push_back(dCreatePlane(space_, 0, 0, 1, 0));
+  const double w = k_.wall_inner, t = k_.wall_thickness, h = k_.wall_height;
+  const double len = 2 * (w + t);
+  const double walls[4][6] = {{0, w + t / 2, h / 2, len, t, h},
+                              {0, -(w + t / 2), h / 2, len, t, h},
+                              {w + t / 2, 0, h / 2, t, len, h},
+                              {-(w + t / 2), 0, h / 2, t, len, h}};
+  for (const auto& b : walls) {
+    dGeomID g = dCreateBox(space_, b[3], b[4], b[5]);
+    dGeomSetPosition(g, b[0], b[1], b[2]);
+    scenery_.push_back(g);
+  }
+  const double c = k_.cube_size;
+  const double cubes[8][2] = {{1.5, 0},   {-1.5, 0},   {0, 1.5},    {0, -1.5},
+                              {1.1, 1.1}, {-1.1, 1.1}, {1.1, -1.1}, {-1.1, -1.1}};
+  for (const auto& p : cubes) {
+    dGeomID g = dCreateBox(space_, c, c, c);
+    dGeomSetPosition(g, p[0], p[1], c / 2);
+    scenery_.push_back(g);
+  }
+  for (dGeomID g : scenery_) dGeomSetData(g, Tag(-1));
+
+  // Modules: a straight chain along +x centred on the origin, module 0 in front (largest x),
+  // lying flat, hinges at 0. Half i.f is module i's front half, i.b its back half.
+  const double s = k_.module_size;
+  const double half_mass = k_.module_mass / 2;
+  modules_.resize(static_cast<std::size_t>(num_modules_));
+  auto centre_of = [&](int i) { return ((num_modules_ - 1) / 2.0 - i) * s; };
+  auto add_geom = [&](int module, dBodyID body, double x) {
+    dGeomID g = dCreateBox(space_, s / 2, s, s);
+    dGeomSetBody(g, body);
+    const dReal* p = dBodyGetPosition(body);
+    dGeomSetOffsetPosition(g, x - p[0], 0, 0);
+    dGeomSetData(g, Tag(module));
+    return g;
+  };
+  auto make_body = [&](double x, double mass, double length) {
+    dBodyID body = dBodyCreate(world_);
+    dBodySetPosition(body, x, 0, s / 2);
+    dMass m;
+    dMassSetBoxTotal(&m, mass, length, s, s);
+    dBodySetMass(body, &m);
+    return body;
+  };
+  const bool rigid = joints_ == Joints::kFixed;
+  for (int i = 0; i < num_modules_; ++i) {
+    Module& m = modules_[static_cast<std::size_t>(i)];
+    const double front_x = centre_of(i) + s / 4, back_x = centre_of(i) - s / 4;
+    if (rigid && i > 0) {
+      // Shares the body made with the previous module's back half (centred on the dock face).
+      m.front.body = modules_[static_cast<std::size_t>(i - 1)].back.body;
+    } else {
+      m.front.body = make_body(front_x, half_mass, s / 2);
+    }
+    m.front.geom = add_geom(i, m.front.body, front_x);
+    if (rigid && i + 1 < num_modules_) {
+      m.back.body = make_body(centre_of(i) - s / 2, 2 * half_mass, s);  // back_i + front_{i+1}
+    } else {
+      m.back.body = make_body(back_x, half_mass, s / 2);
+    }
+    m.back.geom = add_geom(i, m.back.body, back_x);
+    m.hinge = dJointCreateHinge(world_, nullptr);
+    dJointAttach(m.hinge, m.front.body, m.back.body);
+    dJointSetHingeAnchor(m.hinge, centre_of(i), 0, s / 2);
+    dJointSetHingeAxis(m.hinge, 0, 1, 0);
+    dJointSetHingeParam(m.hinge, dParamLoStop, -k_.hinge_range);
+    dJointSetHingeParam(m.hinge, dParamHiStop, k_.hinge_range);
+    dJointSetHingeParam(m.hinge, dParamFMax, k_.servo_max_torque);
+    dJointSetHingeParam(m.hinge, dParamVel, 0);
+  }
+  // Damped docking: module i's back half to module i+1's front half by a soft fixed joint.
+  if (!rigid) {
+    for (int i = 0; i + 1 < num_modules_; ++i) {
+      dJointID dock = dJointCreateFixed(world_, nullptr);
+      dJointAttach(dock, modules_[static_cast<std::size_t>(i)].back.body,
+                   modules_[static_cast<std::size_t>(i + 1)].front.body);
+      dJointSetFixed(dock);
+      // Spring-damper as a soft constraint: ERP = hk / (hk + c), CFM = 1 / (hk + c).
+      const double hk = k_.physics_step * k_.dock_stiffness;
+      dJointSetFixedParam(dock, dParamERP, hk / (hk + k_.dock_damping));
+      dJointSetFixedParam(dock, dParamCFM, 1.0 / (hk + k_.dock_damping));
+      docks_.push_back(dock);
+    }
+  }
+  ray_ = dCreateRay(nullptr, k_.sensor_range);
+  sensors_.assign(static_cast<std::size_t>(num_modules_ * kGaitSensors), 0.0);
+}
+
+std::vector<std::pair<int, int>> GaitScenario::Docking() const {
+  std::vector<std::pair<int, int>> links;
+  for (int i = 0; i + 1 < num_modules_; ++i) links.emplace_back(i, i + 1);
+  return links;
+}
+
+void GaitScenario::SetActuators(int compartment, const double* values) {
+  if (!std::isfinite(values[0])) return;  // never let a bad value into the physics
+  modules_[static_cast<std::size_t>(compartment)].target =
+      k_.hinge_range * std::clamp(values[0], -1.0, 1.0);
+}
+
+void GaitScenario::NearCallback(void* data, dGeomID a, dGeomID b) {
+  auto* self = static_cast<GaitScenario*>(data);
+  const int ma = ModuleOf(a), mb = ModuleOf(b);
+  if (ma < 0 && mb < 0) return;  // scenery never collides with scenery
+  if (ma == mb) return;          // the two halves of one module
+  dBodyID ba = dGeomGetBody(a), bb = dGeomGetBody(b);
+  if (ba == bb) return;  // two geoms of one rigid body
+  if (ba && bb && dAreConnectedExcluding(ba, bb, dJointTypeContact)) return;  // docked halves
+  dContact contact[kMaxContacts];
+  const int n = dCollide(a, b, kMaxContacts, &contact[0].geom, sizeof(dContact));
+  for (int i = 0; i < n; ++i) {
+    contact[i].surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
+    contact[i].surface.mu = self->k_.friction;
+    contact[i].surface.soft_erp = self->k_.contact_erp;
+    contact[i].surface.soft_cfm = self->k_.contact_cfm;
+    dJointID j = dJointCreateContact(self->world_, self->contacts_, &contact[i]);
+    dJointAttach(j, ba, bb);
+  }
+}
+
+void GaitScenario::PhysicsStep() {
+  // Servo: commanded hinge speed proportional to the angle error, capped; torque capped.
+  for (auto& m : modules_) {
+    const double error = m.target - dJointGetHingeAngle(m.hinge);
+    dJointSetHingeParam(m.hinge, dParamVel,
+                        std::clamp(k_.servo_gain * error, -k_.servo_max_speed, k_.servo_max_speed));
+  }
+  dSpaceCollide(space_, this, &GaitScenario::NearCallback);
+  dWorldQuickStep(world_, k_.physics_step);
+  dJointGroupEmpty(contacts_);
+}
+
+bool GaitScenario::StateIsSane() const {
+  for (const auto& m : modules_) {
+    for (dBodyID b : {m.front.body, m.back.body}) {
+      const dReal* p = dBodyGetPosition(b);
+      const dReal* v = dBodyGetLinearVel(b);
+      const dReal* w = dBodyGetAngularVel(b);
+      for (int k = 0; k < 3; ++k) {
+        if (!std::isfinite(p[k]) || !std::isfinite(v[k]) || !std::isfinite(w[k])) return false;
+        if (std::fabs(p[k]) > 1e3 || std::fabs(v[k]) > 1e3 || std::fabs(w[k]) > 1e4) return false;
+      }
+    }
+  }
+  return true;
+}
+
+StepStatus GaitScenario::Step() {
+  if (!error_.empty()) return StepStatus::kFailed;
+  if (tick_ >= total_ticks_) return StepStatus::kFinished;
+  const int substeps = static_cast<int>(std::lround(k_.control_period / k_.physics_step));
+  // A blown-up simulation ends the episode with an error, never with a bogus fitness. The
+  // state is checked after every physics step, before ODE could step on a non-finite value
+  // (Debian's ODE aborts the process on some of those).
+  for (int i = 0; i < substeps; ++i) {
+    try {
+      PhysicsStep();
+    } catch (const OdeError& e) {
+      dJointGroupEmpty(contacts_);
+      error_ = "physics blew up at tick " + std::to_string(tick_) + " (" + e.what() + ")";
+      return StepStatus::kFailed;
+    }
+    if (!StateIsSane()) {
+      error_ = "physics blew up at tick " + std::to_string(tick_) +
+               " (a body's position or velocity is non-finite or runaway)";
+      return StepStatus::kFailed;
+    }
+  }
+  ++tick_;
+  SampleSensors();
+  return tick_ >= total_ticks_ ? StepStatus::kFinished : StepStatus::kRunning;
+}
+
+namespace {
+struct RayHit {
+  int own_module;
+  double nearest;
+};
+void RayCallback(void* data, dGeomID ray, dGeomID other) {
+  auto* hit = static_cast<RayHit*>(data);
+  if (ModuleOf(other) == hit->own_module) return;  // a module's rays ignore its own geometry
+  dContactGeom c[4];
+  const int n = dCollide(ray, other, 4, c, sizeof(dContactGeom));
+  for (int i = 0; i < n; ++i)
+    hit->nearest = std::min(hit->nearest, static_cast<double>(c[i].depth));
+}
+}  // namespace
+
+double GaitScenario::CastRay(int module, const dReal* origin, const dReal* direction) const {
+  dGeomRaySet(ray_, origin[0], origin[1], origin[2], direction[0], direction[1], direction[2]);
+  RayHit hit{module, std::numeric_limits<double>::infinity()};
+  dSpaceCollide2(ray_, reinterpret_cast<dGeomID>(space_), &hit, &RayCallback);
+  return hit.nearest;
+}
+
+void GaitScenario::SampleSensors() {
+  // Rays start 1 mm inside the face they look out of (own geometry is ignored), so a neighbour
+  // touching that face reads ~1. Up and down look out of the front half's top and bottom.
+  const double s = k_.module_size;
+  const double inset = 0.001;
+  const double range = k_.sensor_range;
+  for (int i = 0; i < num_modules_; ++i) {
+    const Module& m = modules_[static_cast<std::size_t>(i)];
+    struct Face {
+      dGeomID geom;
+      double local_point[3];
+      double local_dir[3];
+    };
+    const Face faces[kGaitSensors] = {
+        {m.front.geom, {0, 0, s / 2 - inset}, {0, 0, 1}},
+        {m.front.geom, {s / 4 - inset, 0, 0}, {1, 0, 0}},
+        {m.front.geom, {0, 0, -s / 2 + inset}, {0, 0, -1}},
+        {m.back.geom, {-s / 4 + inset, 0, 0}, {-1, 0, 0}},
+    };
+    for (int j = 0; j < kGaitSensors; ++j) {
+      const Face& f = faces[j];
+      dVector3 origin, dir;
+      GeomPointToWorld(f.geom, f.local_point, origin);
+      GeomVectorToWorld(f.geom, f.local_dir, dir);
+      const double d = std::max(0.0, CastRay(i, origin, dir) - inset);
+      sensors_[static_cast<std::size_t>(i * kGaitSensors + j)] = d < range ? 1.0 - d / range : 0.0;
+    }
+  }
+}
+
+void GaitScenario::ReadSensors(int compartment, double* values) const {
+  for (int j = 0; j < kGaitSensors; ++j)
+    values[j] = sensors_[static_cast<std::size_t>(compartment * kGaitSensors + j)];
+}
+
+double GaitScenario::HingeAngle(int compartment) const {
+  return dJointGetHingeAngle(modules_[static_cast<std::size_t>(compartment)].hinge);
+}
+
+std::array<double, 3> GaitScenario::Centroid() const {
+  std::array<double, 3> c{0, 0, 0};
+  for (const auto& m : modules_) {
+    for (dGeomID g : {m.front.geom, m.back.geom}) {  // equal masses: the mean of the halves
+      const dReal* p = dGeomGetPosition(g);
+      for (int k = 0; k < 3; ++k) c[static_cast<std::size_t>(k)] += p[k];
+    }
+  }
+  for (double& v : c) v /= 2.0 * num_modules_;
+  return c;
+}
+
+double GaitScenario::Cost() const {
+  const auto c = Centroid();
+  return std::hypot(c[0] - start_centroid_[0], c[1] - start_centroid_[1]);
+}
+
+double GaitScenario::Fitness() const { return GaitFitness(Cost(), k_); }
+
+void GaitScenario::Bodies(std::vector<BodyState>* bodies) const {
+  bodies->clear();
+  const double s = k_.module_size;
+  for (int i = 0; i < num_modules_; ++i) {
+    const Module& m = modules_[static_cast<std::size_t>(i)];
+    for (dGeomID g : {m.front.geom, m.back.geom}) {
+      BodyState st;
+      st.module = i;
+      const dReal* p = dGeomGetPosition(g);
+      dQuaternion q;
+      dGeomGetQuaternion(g, q);
+      for (int k = 0; k < 3; ++k) st.position[k] = p[k];
+      for (int k = 0; k < 4; ++k) st.quaternion[k] = q[k];
+      st.size[0] = s / 2;
+      st.size[1] = s;
+      st.size[2] = s;
+      st.mass = k_.module_mass / 2;
+      bodies->push_back(st);
+    }
+  }
+  for (dGeomID g : scenery_) {
+    if (dGeomGetClass(g) != dBoxClass) continue;  // the ground plane is implied
+    BodyState st;
+    const dReal* p = dGeomGetPosition(g);
+    dVector3 size;
+    dGeomBoxGetLengths(g, size);
+    for (int k = 0; k < 3; ++k) {
+      st.position[k] = p[k];
+      st.size[k] = size[k];
+    }
+    bodies->push_back(st);
+  }
+}
+
+void GaitScenario::AnchorHalf(int module, bool back_half) {
+  const Module& m = modules_[static_cast<std::size_t>(module)];
+  dJointID anchor = dJointCreateFixed(world_, nullptr);
+  dJointAttach(anchor, back_half ? m.back.body : m.front.body, nullptr);
+  dJointSetFixed(anchor);
+}
+
+void GaitScenario::AddObstacle(const double position[3], const double size[3]) {
+  dGeomID g = dCreateBox(space_, size[0], size[1], size[2]);
+  dGeomSetPosition(g, position[0], position[1], position[2]);
+  dGeomSetData(g, Tag(-1));
+  scenery_.push_back(g);
+  SampleSensors();
+}
+
+double GaitScenario::MaxDockingGap() const {
+  // Distance between where the two docked faces' centres are: 0 for a rigid dock.
+  double gap = 0;
+  const double s = k_.module_size;
+  for (int i = 0; i + 1 < num_modules_; ++i) {
+    dVector3 a, b;
+    const double back_face[3] = {-s / 4, 0, 0}, front_face[3] = {s / 4, 0, 0};
+    GeomPointToWorld(modules_[static_cast<std::size_t>(i)].back.geom, back_face, a);
+    GeomPointToWorld(modules_[static_cast<std::size_t>(i + 1)].front.geom, front_face, b);
+    gap = std::max(gap, std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                  (a[2] - b[2]) * (a[2] - b[2])));
+  }
+  return gap;
+}
+
+}  // namespace ahhs::sim

@@ -1,0 +1,46 @@
+#include "sim/core/scenario.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "sim/core/gait.h"
+#include "sim/core/pendulum.h"
+
+namespace ahhs::sim {
+
+ScenarioKind ParseScenarioKind(const std::string& name) {
+  if (name == "gait") return ScenarioKind::kGait;
+  if (name == "pendulum") return ScenarioKind::kPendulum;
+  throw std::invalid_argument("unknown scenario '" + name + "' (use gait or pendulum)");
+}
+
+Joints ParseJoints(const std::string& name) {
+  if (name == "damped") return Joints::kDamped;
+  if (name == "fixed") return Joints::kFixed;
+  throw std::invalid_argument("unknown joints '" + name + "' (use damped or fixed)");
+}
+
+const char* ScenarioName(ScenarioKind kind) {
+  return kind == ScenarioKind::kGait ? "gait" : "pendulum";
+}
+const char* JointsName(Joints joints) { return joints == Joints::kDamped ? "damped" : "fixed"; }
+
+std::string CheckConfig(const ScenarioConfig& c) {
+  if (c.kind != ScenarioKind::kGait && c.kind != ScenarioKind::kPendulum)
+    return "scenario: unknown";
+  if (c.kind == ScenarioKind::kGait && (c.num_modules < 2 || c.num_modules > 100))
+    return "modules: a gait organism needs 2 to 100 modules, not " + std::to_string(c.num_modules);
+  if (!std::isfinite(c.duration) || c.duration < 0)
+    return "duration: must be a positive number of seconds";
+  if (c.duration > 1e5) return "duration: more than 100000 s";
+  return "";
+}
+
+std::unique_ptr<Scenario> MakeScenario(const ScenarioConfig& config) {
+  const std::string error = CheckConfig(config);
+  if (!error.empty()) throw std::invalid_argument(error);
+  if (config.kind == ScenarioKind::kPendulum) return std::make_unique<PendulumScenario>(config);
+  return std::make_unique<GaitScenario>(config);
+}
+
+}  // namespace ahhs::sim

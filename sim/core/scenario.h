@@ -1,0 +1,88 @@
+// The two tasks of the paper behind one interface: apply actuator values, step one control
+// period, read sensors, organism state and fitness (../shared/spec/scenarios.md,
+// docs/scenarios.md). No LCM, no I/O. One stepping ODE world per process: ODE's solver draws
+// from a process-global random seed (see GaitScenario).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ahhs::sim {
+
+enum class ScenarioKind { kGait, kPendulum };
+enum class Joints { kDamped, kFixed };
+
+struct ScenarioConfig {
+  ScenarioKind kind = ScenarioKind::kGait;
+  int num_modules = 5;              // gait: modules in the chain (>= 2); pendulum: always 2
+  Joints joints = Joints::kDamped;  // gait docking variant
+  double duration = 0;              // simulated seconds; 0 = the task's default (60 s / 3000 ticks)
+};
+
+// Parses "gait"/"pendulum" and "damped"/"fixed"; throw std::invalid_argument otherwise.
+ScenarioKind ParseScenarioKind(const std::string& name);
+Joints ParseJoints(const std::string& name);
+const char* ScenarioName(ScenarioKind kind);
+const char* JointsName(Joints joints);
+
+// Checks a config; returns "" or a message naming the bad field.
+std::string CheckConfig(const ScenarioConfig& config);
+
+// Pose and size of one rigid body, world frame (x along the initial chain, z up), metres.
+struct BodyState {
+  int module = -1;  // compartment the body belongs to; -1 = scenery
+  enum Shape { kBox = 0, kSphere = 1, kCylinder = 2 } shape = kBox;
+  double position[3] = {0, 0, 0};
+  double quaternion[4] = {1, 0, 0, 0};  // w, x, y, z
+  double size[3] = {0, 0, 0};           // box: full extents; sphere: size[0] = radius
+  double mass = 0;                      // kg, 0 = static
+};
+
+enum class StepStatus { kRunning, kFinished, kFailed };
+
+class Scenario {
+ public:
+  virtual ~Scenario() = default;
+
+  // Starts a new episode: every random draw of the episode comes from `seed`.
+  virtual void Reset(std::uint64_t seed) = 0;
+
+  virtual int num_compartments() const = 0;
+  virtual int num_sensors() const = 0;    // sensor slots per compartment
+  virtual int num_actuators() const = 0;  // actuator slots per compartment
+  // Ownership masks: compartment c reads sensor j iff sensor_owned(c, j).
+  virtual bool sensor_owned(int compartment, int sensor) const = 0;
+  virtual bool actuator_owned(int compartment, int actuator) const = 0;
+  // Docked pairs (a, b), a < b: the hormone topology.
+  virtual std::vector<std::pair<int, int>> Docking() const = 0;
+
+  // Sets a compartment's actuator values for the next Step (values in [-1, 1]; slots it does not
+  // own are ignored). Values persist until set again (a lost command keeps the last one).
+  virtual void SetActuators(int compartment, const double* values) = 0;
+  // Advances one control period. After kFailed (physics blew up) the episode is over and
+  // error() says why; Fitness() must not be used.
+  virtual StepStatus Step() = 0;
+
+  // Sensor values of the current tick (noise included), num_sensors() entries; 0 where absent.
+  virtual void ReadSensors(int compartment, double* values) const = 0;
+  // Measured main-hinge angle of a compartment, radians (0 where there is none).
+  virtual double HingeAngle(int compartment) const = 0;
+  virtual void Bodies(std::vector<BodyState>* bodies) const = 0;
+
+  virtual double Fitness() const = 0;  // maximised; see docs/scenarios.md
+  virtual double Cost() const = 0;     // pendulum: sum of |phi|; gait: displacement, metres
+
+  virtual std::int64_t tick() const = 0;         // control periods done in this episode
+  virtual std::int64_t total_ticks() const = 0;  // ticks of a full episode
+  virtual double control_period() const = 0;     // seconds
+  double sim_time() const { return static_cast<double>(tick()) * control_period(); }
+  virtual const std::string& error() const = 0;
+};
+
+// Throws std::invalid_argument when CheckConfig fails.
+std::unique_ptr<Scenario> MakeScenario(const ScenarioConfig& config);
+
+}  // namespace ahhs::sim

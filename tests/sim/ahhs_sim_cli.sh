@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# ahhs-sim standalone mode: baseline runs end with "fitness: <value>"; bad input is refused.
+set -uo pipefail
+sim=${1:?usage: ahhs_sim_cli.sh PATH/TO/ahhs-sim}
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+expect_error() {
+  local want=$1; shift
+  if "$@" >"$tmp/out" 2>"$tmp/err"; then fail "expected failure: $*"; fi
+  grep -qF -- "$want" "$tmp/err" || fail "stderr of '$*' lacks '$want': $(cat "$tmp/err")"
+}
+"$sim" --help >/dev/null || fail --help
+out=$("$sim" --scenario pendulum --drive zero --seed 3) || fail "pendulum run"
+last=$(tail -1 <<<"$out")
+[[ $last =~ ^fitness:\ (-?[0-9.e+-]+)$ ]] || fail "last line is not 'fitness: <value>': $last"
+awk -v f="${BASH_REMATCH[1]}" 'BEGIN { exit !(f > -1e-9 && f < 1e-9) }' || fail "hanging pendulum should score 0: $last"
+out=$("$sim" --scenario gait --drive wave --modules 3 --duration 5 --joints fixed --seed 2) || fail "gait run"
+[[ $(tail -1 <<<"$out") =~ ^fitness:\ [0-9.e+-]+$ ]] || fail "gait last line"
+a=$("$sim" --scenario gait --drive wave --duration 3 --seed 9 | tail -1)
+b=$("$sim" --scenario gait --drive wave --duration 3 --seed 9 | tail -1)
+[[ "$a" == "$b" ]] || fail "same seed, different fitness: $a vs $b"
+expect_error "unknown scenario 'walker'" "$sim" --scenario walker
+expect_error "--duration must be a positive" "$sim" --duration -5
+expect_error "--duration must be a positive" "$sim" --duration 0
+expect_error "at least 2 modules" "$sim" --modules 1
+expect_error "unknown joints" "$sim" --joints wobbly
+expect_error "unknown drive" "$sim" --drive dance
+expect_error "--modules" "$sim" --modules five
+expect_error "--seed" "$sim" --seed -x
+echo "ahhs-sim: all checks passed"

@@ -1,0 +1,200 @@
+#include "sim/core/gait.h"
+
+#include <catch2/catch.hpp>
+
+#include "sim/core/drive.h"
+
+using namespace ahhs::sim;
+
+namespace {
+ScenarioConfig Gait(Joints joints = Joints::kDamped, int modules = 5, double duration = 60) {
+  ScenarioConfig c;
+  c.kind = ScenarioKind::kGait;
+  c.joints = joints;
+  c.num_modules = modules;
+  c.duration = duration;
+  return c;
+}
+void RunDrive(GaitScenario& g, DriveKind drive) {
+  double a[1];
+  while (true) {
+    for (int m = 0; m < g.num_compartments(); ++m) {
+      DriveCommand(drive, g, m, a);
+      g.SetActuators(m, a);
+    }
+    if (g.Step() != StepStatus::kRunning) break;
+  }
+}
+}  // namespace
+
+TEST_CASE("gait: with zero drive the chain stays put", "[sim][gait]") {
+  for (Joints j : {Joints::kDamped, Joints::kFixed}) {
+    GaitScenario g(Gait(j));
+    g.Reset(1);
+    RunDrive(g, DriveKind::kZero);
+    INFO(JointsName(j));
+    CHECK(g.tick() == 1200);
+    CHECK(g.Fitness() < 0.02);
+  }
+}
+
+TEST_CASE("gait: a travelling wave moves the chain", "[sim][gait]") {
+  for (Joints j : {Joints::kDamped, Joints::kFixed}) {
+    GaitScenario g(Gait(j));
+    g.Reset(1);
+    RunDrive(g, DriveKind::kWave);
+    INFO(JointsName(j) << " fitness " << g.Fitness());
+    CHECK(g.Fitness() > 0.3);
+    CHECK(g.Fitness() < 2.5);  // and does not fly: the paper's best is about 1.9
+  }
+}
+
+TEST_CASE("gait: hinges reach commanded angles", "[sim][gait]") {
+  // Every hinge of a 3-module chain to +45 degrees, then the middle one to -30: within 0.03 rad
+  // after 1.5 s (the servo is speed- and torque-limited).
+  GaitScenario g(Gait(Joints::kFixed, 3, 10));
+  g.Reset(1);
+  const double half[1] = {0.5};
+  for (int m = 0; m < 3; ++m) g.SetActuators(m, half);
+  for (int t = 0; t < 30; ++t) g.Step();
+  for (int m = 0; m < 3; ++m) CHECK(g.HingeAngle(m) == Approx(M_PI / 4).margin(0.03));
+  const double back[1] = {-1.0 / 3};
+  g.SetActuators(1, back);
+  for (int t = 0; t < 30; ++t) g.Step();
+  CHECK(g.HingeAngle(1) == Approx(-M_PI / 6).margin(0.03));
+}
+
+TEST_CASE("gait: the servo lifts two neighbouring modules, not three", "[sim][gait]") {
+  // The last module's back half is held; its hinge raises everything in front of it: its own
+  // front half plus `lifted` modules (a negative hinge angle lifts the front).
+  auto lift = [](int lifted) {
+    GaitScenario g(Gait(Joints::kFixed, lifted + 1, 10));
+    g.Reset(1);
+    g.AnchorHalf(lifted, true);
+    const double up[1] = {-1.0}, flat[1] = {0.0};
+    for (int m = 0; m < lifted; ++m) g.SetActuators(m, flat);
+    g.SetActuators(lifted, up);
+    for (int t = 0; t < 60; ++t) g.Step();
+    return -g.HingeAngle(lifted);
+  };
+  CHECK(lift(1) > 1.5);
+  CHECK(lift(2) > 1.5);  // holding torque needed 1.53 N m < 2.2 N m
+  CHECK(lift(3) < 0.3);  // 3.0 N m needed: the servo stalls
+}
+
+TEST_CASE("gait: fixed and damped docking give different trajectories", "[sim][gait]") {
+  GaitScenario damped(Gait(Joints::kDamped, 5, 10)), fixed(Gait(Joints::kFixed, 5, 10));
+  damped.Reset(1);
+  fixed.Reset(1);
+  RunDrive(damped, DriveKind::kWave);
+  const auto cd = damped.Centroid();
+  const double gap_damped = damped.MaxDockingGap();
+  RunDrive(fixed, DriveKind::kWave);
+  const auto cf = fixed.Centroid();
+  CHECK(std::hypot(cd[0] - cf[0], cd[1] - cf[1]) > 0.005);
+  CHECK(gap_damped > 1e-4);              // the damped dock gives a little
+  CHECK(fixed.MaxDockingGap() < 1e-12);  // the fixed dock is one rigid body
+}
+
+TEST_CASE("gait: proximity rays read the expected values", "[sim][gait]") {
+  GaitScenario g(Gait());
+  g.Reset(1);
+  double s[4];
+  // Lying flat: up sees nothing, down touches the ground, inner modules touch their neighbours,
+  // the front module's forward ray and the last module's backward ray see nothing.
+  g.ReadSensors(0, s);
+  CHECK(s[kRayUp] == 0.0);
+  CHECK(s[kRayDown] == Approx(1.0).margin(0.01));
+  CHECK(s[kRayForward] == 0.0);
+  CHECK(s[kRayBack] == Approx(1.0).margin(0.01));
+  g.ReadSensors(2, s);
+  CHECK(s[kRayForward] == Approx(1.0).margin(0.01));
+  CHECK(s[kRayBack] == Approx(1.0).margin(0.01));
+  g.ReadSensors(4, s);
+  CHECK(s[kRayBack] == 0.0);
+  // A box whose near face is 0.1 m ahead of module 0's front face: 1 - 0.1 / 0.2 = 0.5.
+  const double front_face = 2 * 0.1 + 0.05;
+  const double pos[3] = {front_face + 0.1 + 0.05, 0, 0.15};
+  const double size[3] = {0.1, 0.3, 0.3};
+  g.AddObstacle(pos, size);
+  g.ReadSensors(0, s);
+  CHECK(s[kRayForward] == Approx(0.5).margin(1e-6));
+  // And one 0.15 m above module 3: 1 - 0.15 / 0.2 = 0.25.
+  const double above[3] = {-0.1 + 0.025, 0, 0.1 + 0.15 + 0.01};
+  const double slab[3] = {0.05, 0.05, 0.02};
+  g.AddObstacle(above, slab);
+  g.ReadSensors(3, s);
+  CHECK(s[kRayUp] == Approx(0.25).margin(1e-6));
+}
+
+TEST_CASE("gait: fitness landmarks", "[sim][gait]") {
+  const GaitConstants k;
+  CHECK(GaitFitness(k.wall_inner, k) == Approx(0.7));  // centroid at the wall's inner face
+  CHECK(GaitFitness(k.wall_inner / 0.7, k) == Approx(1.0));
+  CHECK(GaitFitness(0, k) == 0.0);
+}
+
+TEST_CASE("gait: reset(seed) and the same commands give bit-identical runs",
+          "[sim][gait][determinism]") {
+  auto run = [](GaitScenario& g, std::uint64_t seed) {
+    g.Reset(seed);
+    RunDrive(g, DriveKind::kWave);
+    std::vector<BodyState> bodies;
+    g.Bodies(&bodies);
+    std::vector<double> out{g.Fitness()};
+    for (const auto& b : bodies)
+      out.insert(out.end(),
+                 {b.position[0], b.position[1], b.position[2], b.quaternion[0], b.quaternion[3]});
+    return out;
+  };
+  GaitScenario a(Gait(Joints::kDamped, 5, 15)), b(Gait(Joints::kDamped, 5, 15));
+  const auto first = run(a, 3);
+  run(a, 4);  // another episode in between must leave no trace
+  CHECK(run(a, 3) == first);
+  CHECK(run(b, 3) == first);  // a fresh world, the same bits
+}
+
+TEST_CASE("gait: non-finite commands are ignored; a blow-up fails the episode", "[sim][gait]") {
+  GaitScenario g(Gait(Joints::kFixed, 2, 5));
+  g.Reset(1);
+  const double nan[1] = {std::nan("")};
+  g.SetActuators(0, nan);
+  for (int t = 0; t < 20; ++t) REQUIRE(g.Step() == StepStatus::kRunning);
+  CHECK(std::isfinite(g.Fitness()));
+
+  // An absurd servo makes the bodies run away; the episode fails on the first tick.
+  GaitConstants wild;
+  wild.servo_gain = 1e12;
+  wild.servo_max_speed = 1e12;
+  wild.servo_max_torque = 1e12;
+  GaitScenario runaway(Gait(Joints::kFixed, 2, 5), wild);
+  runaway.Reset(1);
+  const double full[1] = {1.0};
+  runaway.SetActuators(0, full);
+  CHECK(runaway.Step() == StepStatus::kFailed);
+  CHECK_THAT(runaway.error(), Catch::Contains("physics blew up"));
+  CHECK(runaway.Step() == StepStatus::kFailed);  // and stays failed
+
+  // A NaN inside ODE (here: NaN gravity) is reported by ODE's own checks; the episode fails
+  // instead of the process aborting.
+  GaitConstants broken;
+  broken.gravity = std::nan("");
+  GaitScenario bad(Gait(Joints::kFixed, 2, 5), broken);
+  bad.Reset(1);
+  CHECK(bad.Step() == StepStatus::kFailed);
+  CHECK_THAT(bad.error(), Catch::Contains("physics blew up"));
+  bad.Reset(2);  // a fresh world after a failure works
+}
+
+TEST_CASE("scenario configs are checked", "[sim]") {
+  CHECK_THROWS_AS(ParseScenarioKind("walker"), std::invalid_argument);
+  CHECK_THROWS_AS(ParseJoints("loose"), std::invalid_argument);
+  ScenarioConfig c = Gait();
+  c.num_modules = 1;
+  CHECK_THAT(CheckConfig(c), Catch::Contains("modules"));
+  c = Gait();
+  c.duration = -1;
+  CHECK_THAT(CheckConfig(c), Catch::Contains("duration"));
+  c.duration = std::nan("");
+  CHECK_THROWS_AS(MakeScenario(c), std::invalid_argument);
+}

@@ -67,3 +67,15 @@ int LcmBus::Handle(std::chrono::microseconds timeout) {
 }
 
 }  // namespace ahhs::bus
+
+#include <chrono>
+
+#include "bus/channels.h"
+
+namespace ahhs::bus {
+std::int64_t NowUtime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+}  // namespace ahhs::bus

@@ -1,24 +1,88 @@
-// ahhs-sim: the ODE arena. Standalone mode (--drive) runs one episode with built-in commands
-// and prints "fitness: <value>" as its last line.
+// ahhs-sim: the ODE arena.
+//   bus mode (default): serves episodes commanded on <ARENA>/SIM/CONTROL (docs/protocol.md);
+//   standalone mode (--drive): one episode with built-in commands, "fitness: <value>" last.
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 
+#include "bus/lcm_bus.h"
 #include "sim/core/drive.h"
 #include "sim/core/scenario.h"
+#include "sim/node/sim_node.h"
 
 namespace as = ahhs::sim;
 
+namespace {
+
+std::atomic<bool> g_stop{false};
+void OnSignal(int) { g_stop = true; }
+
+int ServeBus(const std::string& url, const as::SimNodeOptions& options, int episodes,
+             bool verbose) {
+  ahhs::bus::LcmBus bus(url);
+  as::SimNode node(&bus, options);
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  std::fprintf(stderr, "ahhs-sim: serving arena '%s' on %s\n", options.arena.c_str(), url.c_str());
+  int ended = 0;
+  auto last_phase = node.phase();
+  while (!g_stop) {
+    node.Poll(std::chrono::milliseconds(100));
+    const auto phase = node.phase();
+    if (phase == last_phase) continue;
+    last_phase = phase;
+    if (verbose)
+      std::fprintf(stderr, "ahhs-sim: episode %lld %s\n", static_cast<long long>(node.episode()),
+                   as::PhaseName(phase));
+    if (phase != as::SimNode::Phase::kFinished && phase != as::SimNode::Phase::kFailed) continue;
+    const auto s = node.stats();
+    std::fprintf(
+        stderr,
+        "ahhs-sim: episode %lld %s after %lld ticks, fitness %.17g; missed %llu, late %llu, "
+        "dropped %llu%s%s\n",
+        static_cast<long long>(node.episode()), as::PhaseName(phase),
+        static_cast<long long>(node.scenario()->tick()),
+        phase == as::SimNode::Phase::kFinished ? node.scenario()->Fitness() : 0.0,
+        static_cast<unsigned long long>(s.missed_commands),
+        static_cast<unsigned long long>(s.late_commands),
+        static_cast<unsigned long long>(s.dropped_messages), s.last_error.empty() ? "" : "; ",
+        s.last_error.c_str());
+    if (episodes > 0 && ++ended >= episodes) break;
+  }
+  return 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  CLI::App app{"ahhs-sim: physics of the gait and pendulum arenas"};
+  CLI::App app{
+      "ahhs-sim: physics of the gait and pendulum arenas.\n"
+      "Without --drive it serves episodes on the bus; with --drive it runs one standalone."};
+  std::string url = ahhs::bus::kDefaultLcmUrl;
+  as::SimNodeOptions node_options;
+  int timeout_ms = 2000;
+  int episodes = 0;
+  app.add_option("--lcm-url", url, "LCM URL (bus mode)")->capture_default_str();
+  app.add_option("--arena", node_options.arena, "arena name: channel prefix (bus mode)")
+      ->capture_default_str();
+  app.add_option("--lockstep-timeout-ms", timeout_ms,
+                 "bus mode: longest wait for a module's command")
+      ->check(CLI::Range(1, 600000))
+      ->capture_default_str();
+  app.add_option("--episodes", episodes,
+                 "bus mode: exit after this many episodes (0 = serve until killed)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   std::string scenario = "gait", joints = "damped", drive = "zero";
   int modules = 5;
   double duration = 0;
   std::uint64_t seed = 1;
   bool verbose = false;
   app.add_option("--scenario", scenario, "gait or pendulum")->capture_default_str();
-  app.add_option("--drive", drive, "built-in commands: zero or wave")->capture_default_str();
+  auto* drive_opt = app.add_option("--drive", drive, "standalone: built-in commands, zero or wave");
   app.add_option("--joints", joints, "gait docking: damped or fixed")->capture_default_str();
   app.add_option("--modules", modules, "gait: modules in the chain (>= 2)")->capture_default_str();
   app.add_option("--seed", seed, "episode seed")->capture_default_str();
@@ -26,6 +90,15 @@ int main(int argc, char** argv) {
   app.add_flag("-v,--verbose", verbose, "print the state once per simulated second");
   CLI11_PARSE(app, argc, argv);
 
+  if (drive_opt->count() == 0) {
+    try {
+      node_options.lockstep_timeout = std::chrono::milliseconds(timeout_ms);
+      return ServeBus(url, node_options, episodes, verbose);
+    } catch (const std::exception& e) {
+      std::cerr << "ahhs-sim: " << e.what() << '\n';
+      return 1;
+    }
+  }
   try {
     as::ScenarioConfig config;
     config.kind = as::ParseScenarioKind(scenario);

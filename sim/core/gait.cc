@@ -256,7 +256,7 @@ bool GaitScenario::StateIsSane() const {
   return true;
 }
 
-StepStatus GaitScenario::Step() {
+StepStatus GaitScenario::Step(const SubstepObserver& observer) {
   if (!error_.empty()) return StepStatus::kFailed;
   if (tick_ >= total_ticks_) return StepStatus::kFinished;
   const int substeps = static_cast<int>(std::lround(k_.control_period / k_.physics_step));
@@ -276,6 +276,7 @@ StepStatus GaitScenario::Step() {
                " (a body's position or velocity is non-finite or runaway)";
       return StepStatus::kFailed;
     }
+    if (observer) observer((static_cast<double>(tick_) + (i + 1.0) / substeps) * k_.control_period);
   }
   ++tick_;
   SampleSensors();

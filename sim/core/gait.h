@@ -35,7 +35,8 @@ class GaitScenario final : public Scenario {
   bool actuator_owned(int, int) const override { return true; }
   std::vector<std::pair<int, int>> Docking() const override;
   void SetActuators(int compartment, const double* values) override;
-  StepStatus Step() override;
+  using Scenario::Step;
+  StepStatus Step(const SubstepObserver& observer) override;
   void ReadSensors(int compartment, double* values) const override;
   double HingeAngle(int compartment) const override;
   void Bodies(std::vector<BodyState>* bodies) const override;

@@ -84,12 +84,15 @@ void PendulumScenario::Integrate(double v_cmd) {
   state_.phi = WrapAngle(state_.phi);
 }
 
-StepStatus PendulumScenario::Step() {
+StepStatus PendulumScenario::Step(const SubstepObserver& observer) {
   if (!error_.empty()) return StepStatus::kFailed;
   if (tick_ >= total_ticks_) return StepStatus::kFinished;
   const double v_cmd = k_.max_speed * (actuators_[1] - actuators_[0]) / 2.0;
   const int substeps = static_cast<int>(std::lround(k_.control_period / k_.integration_step));
-  for (int i = 0; i < substeps; ++i) Integrate(v_cmd);
+  for (int i = 0; i < substeps; ++i) {
+    Integrate(v_cmd);
+    if (observer) observer((static_cast<double>(tick_) + (i + 1.0) / substeps) * k_.control_period);
+  }
   if (!std::isfinite(state_.x) || !std::isfinite(state_.v) || !std::isfinite(state_.phi) ||
       !std::isfinite(state_.omega)) {
     error_ = "pendulum state is not finite at tick " + std::to_string(tick_);

@@ -50,7 +50,8 @@ class PendulumScenario final : public Scenario {
   }
   std::vector<std::pair<int, int>> Docking() const override { return {{0, 1}}; }
   void SetActuators(int compartment, const double* values) override;
-  StepStatus Step() override;
+  using Scenario::Step;
+  StepStatus Step(const SubstepObserver& observer) override;
   void ReadSensors(int compartment, double* values) const override;
   double HingeAngle(int) const override { return 0.0; }
   void Bodies(std::vector<BodyState>* bodies) const override;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -62,9 +63,14 @@ class Scenario {
   // Sets a compartment's actuator values for the next Step (values in [-1, 1]; slots it does not
   // own are ignored). Values persist until set again (a lost command keeps the last one).
   virtual void SetActuators(int compartment, const double* values) = 0;
+  // Called after every integration substep with the simulated time reached (seconds since the
+  // episode start), e.g. to publish the state more often than once per tick.
+  using SubstepObserver = std::function<void(double sim_time)>;
+
   // Advances one control period. After kFailed (physics blew up) the episode is over and
   // error() says why; Fitness() must not be used.
-  virtual StepStatus Step() = 0;
+  StepStatus Step() { return Step(nullptr); }
+  virtual StepStatus Step(const SubstepObserver& observer) = 0;
 
   // Sensor values of the current tick (noise included), num_sensors() entries; 0 where absent.
   virtual void ReadSensors(int compartment, double* values) const = 0;

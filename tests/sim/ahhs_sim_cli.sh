@@ -19,12 +19,13 @@ out=$("$sim" --scenario gait --drive wave --modules 3 --duration 5 --joints fixe
 a=$("$sim" --scenario gait --drive wave --duration 3 --seed 9 | tail -1)
 b=$("$sim" --scenario gait --drive wave --duration 3 --seed 9 | tail -1)
 [[ "$a" == "$b" ]] || fail "same seed, different fitness: $a vs $b"
-expect_error "unknown scenario 'walker'" "$sim" --scenario walker
-expect_error "--duration must be a positive" "$sim" --duration -5
-expect_error "--duration must be a positive" "$sim" --duration 0
-expect_error "at least 2 modules" "$sim" --modules 1
-expect_error "unknown joints" "$sim" --joints wobbly
+expect_error "unknown scenario 'walker'" "$sim" --drive zero --scenario walker
+expect_error "--duration must be a positive" "$sim" --drive zero --duration -5
+expect_error "--duration must be a positive" "$sim" --drive zero --duration 0
+expect_error "at least 2 modules" "$sim" --drive zero --modules 1
+expect_error "unknown joints" "$sim" --drive zero --joints wobbly
 expect_error "unknown drive" "$sim" --drive dance
-expect_error "--modules" "$sim" --modules five
-expect_error "--seed" "$sim" --seed -x
+expect_error "--modules" "$sim" --drive zero --modules five
+expect_error "--seed" "$sim" --drive zero --seed -x
+expect_error "cannot open LCM bus" "$sim" --lcm-url "nosuch://x"
 echo "ahhs-sim: all checks passed"

@@ -1,0 +1,105 @@
+#include "sim/node/sim_codec.h"
+
+#include <cmath>
+
+namespace ahhs::sim {
+
+module_sensors_t SensorsMessage(const Scenario& scenario, int module, std::int64_t episode) {
+  module_sensors_t m{};
+  m.episode = episode;
+  m.tick = scenario.tick();
+  m.module = module;
+  m.sim_time = scenario.sim_time();
+  const int n = scenario.num_sensors();
+  m.num_sensors = static_cast<std::int16_t>(n);
+  m.values.resize(static_cast<std::size_t>(n));
+  scenario.ReadSensors(module, m.values.data());
+  m.present.resize(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j)
+    m.present[static_cast<std::size_t>(j)] = scenario.sensor_owned(module, j);
+  m.hinge_angle = scenario.HingeAngle(module);
+  return m;
+}
+
+sim_state_t StateMessage(const std::vector<BodyState>& bodies, std::int64_t episode,
+                         std::int64_t tick, double sim_time) {
+  sim_state_t m{};
+  m.episode = episode;
+  m.tick = tick;
+  m.sim_time = sim_time;
+  m.num_bodies = static_cast<std::int16_t>(bodies.size());
+  for (const BodyState& b : bodies) {
+    m.module.push_back(b.module);
+    m.shape.push_back(static_cast<std::int8_t>(b.shape));
+    m.px.push_back(b.position[0]);
+    m.py.push_back(b.position[1]);
+    m.pz.push_back(b.position[2]);
+    m.qw.push_back(b.quaternion[0]);
+    m.qx.push_back(b.quaternion[1]);
+    m.qy.push_back(b.quaternion[2]);
+    m.qz.push_back(b.quaternion[3]);
+    m.sx.push_back(b.size[0]);
+    m.sy.push_back(b.size[1]);
+    m.sz.push_back(b.size[2]);
+    m.mass.push_back(b.mass);
+  }
+  return m;
+}
+
+topology_t TopologyMessage(const Scenario& scenario, std::int64_t episode) {
+  topology_t m{};
+  m.episode = episode;
+  m.tick = scenario.tick();
+  m.num_modules = scenario.num_compartments();
+  m.ports_per_module = 4;
+  for (const auto& [a, b] : scenario.Docking()) {
+    m.module_a.push_back(a);
+    m.port_a.push_back(2);  // back port of the module in front
+    m.module_b.push_back(b);
+    m.port_b.push_back(0);  // front port of the one behind
+  }
+  m.num_links = static_cast<std::int16_t>(m.module_a.size());
+  return m;
+}
+
+std::string ConfigFromReset(const sim_control_t& reset, ScenarioConfig* config) {
+  ScenarioConfig c;
+  if (reset.scenario == "gait") {
+    c.kind = ScenarioKind::kGait;
+  } else if (reset.scenario == "pendulum") {
+    c.kind = ScenarioKind::kPendulum;
+  } else {
+    return "unknown scenario '" + reset.scenario + "'";
+  }
+  c.num_modules = c.kind == ScenarioKind::kPendulum ? 2 : reset.num_modules;
+  if (reset.joints == sim_control_t::JOINTS_DAMPED) {
+    c.joints = Joints::kDamped;
+  } else if (reset.joints == sim_control_t::JOINTS_FIXED) {
+    c.joints = Joints::kFixed;
+  } else {
+    return "unknown joints value " + std::to_string(reset.joints);
+  }
+  c.duration = reset.duration;
+  if (reset.clock_mode != sim_control_t::MODE_LOCKSTEP &&
+      reset.clock_mode != sim_control_t::MODE_REALTIME)
+    return "unknown clock mode " + std::to_string(reset.clock_mode);
+  const std::string error = CheckConfig(c);
+  if (!error.empty()) return error;
+  *config = c;
+  return "";
+}
+
+std::string CheckHinge(const hinge_command_t& cmd, const Scenario& scenario) {
+  if (cmd.module < 0 || cmd.module >= scenario.num_compartments()) return "unknown module";
+  if (cmd.num_actuators != scenario.num_actuators() || cmd.values.size() != cmd.present.size())
+    return "wrong number of actuators";
+  for (int a = 0; a < scenario.num_actuators(); ++a) {
+    if (!scenario.actuator_owned(cmd.module, a)) continue;
+    const double v = cmd.values[static_cast<std::size_t>(a)];
+    if (!std::isfinite(v)) return "non-finite actuator value";
+    if (v < -1.0 || v > 1.0) return "actuator value outside [-1, 1]";
+  }
+  return "";
+}
+
+}  // namespace ahhs::sim

@@ -1,0 +1,28 @@
+// Scenario state <-> LCM messages (pure functions; no transport).
+#pragma once
+
+#include <ahhs/hinge_command_t.hpp>
+#include <ahhs/module_sensors_t.hpp>
+#include <ahhs/sim_control_t.hpp>
+#include <ahhs/sim_state_t.hpp>
+#include <ahhs/topology_t.hpp>
+#include <string>
+#include <vector>
+
+#include "sim/core/scenario.h"
+
+namespace ahhs::sim {
+
+module_sensors_t SensorsMessage(const Scenario& scenario, int module, std::int64_t episode);
+sim_state_t StateMessage(const std::vector<BodyState>& bodies, std::int64_t episode,
+                         std::int64_t tick, double sim_time);
+topology_t TopologyMessage(const Scenario& scenario, std::int64_t episode);
+
+// Validates a RESET and turns it into a scenario config; returns "" or why it is refused.
+std::string ConfigFromReset(const sim_control_t& reset, ScenarioConfig* config);
+
+// Checks a hinge command against the scenario: module id, sizes, finite values in [-1, 1] for
+// the slots it owns. Returns "" or why it is dropped.
+std::string CheckHinge(const hinge_command_t& cmd, const Scenario& scenario);
+
+}  // namespace ahhs::sim

@@ -1,0 +1,260 @@
+#include "sim/node/sim_node.h"
+
+#include <ahhs/sim_clock_t.hpp>
+#include <algorithm>
+#include <cmath>
+
+#include "sim/node/sim_codec.h"
+
+namespace ahhs::sim {
+
+const char* PhaseName(SimNode::Phase phase) {
+  switch (phase) {
+    case SimNode::Phase::kIdle:
+      return "idle";
+    case SimNode::Phase::kReady:
+      return "ready";
+    case SimNode::Phase::kRunning:
+      return "running";
+    case SimNode::Phase::kPaused:
+      return "paused";
+    case SimNode::Phase::kFinished:
+      return "finished";
+    case SimNode::Phase::kFailed:
+      return "failed";
+  }
+  return "?";
+}
+
+SimNode::SimNode(bus::Bus* bus, SimNodeOptions options)
+    : bus_(bus), options_(std::move(options)), channels_(options_.arena) {
+  bus::SubscribeTyped<sim_control_t>(
+      *bus_, channels_.SimControl(),
+      [this](const std::string&, const sim_control_t& m) { OnControl(m); }, &control_counters_);
+  bus::SubscribeTyped<hinge_command_t>(
+      *bus_, channels_.AnyHinge(),
+      [this](const std::string& channel, const hinge_command_t& m) { OnHinge(channel, m); },
+      &hinge_counters_);
+}
+
+void SimNode::OnControl(const sim_control_t& m) {
+  switch (m.command) {
+    case sim_control_t::RESET:
+      Reset(m);
+      return;
+    case sim_control_t::START:
+      if (m.episode != episode_ || !scenario_) break;
+      if (phase_ == Phase::kReady) {
+        steps_left_ = -1;
+        Start();
+      } else if (phase_ == Phase::kPaused) {
+        steps_left_ = -1;
+        phase_ = Phase::kRunning;
+        tick_deadline_ =
+            Clock::now() + (realtime_
+                                ? std::chrono::duration_cast<Clock::duration>(
+                                      std::chrono::duration<double>(scenario_->control_period()))
+                                : Clock::duration(options_.lockstep_timeout));
+      }
+      return;
+    case sim_control_t::PAUSE:
+      if (m.episode == episode_ && phase_ == Phase::kRunning) {
+        phase_ = Phase::kPaused;
+        PublishClock(sim_clock_t::PAUSED);
+      }
+      return;
+    case sim_control_t::STEP:
+      if (m.episode != episode_ || m.steps <= 0) break;
+      if (phase_ == Phase::kReady || phase_ == Phase::kPaused) {
+        steps_left_ = m.steps;
+        if (phase_ == Phase::kReady) {
+          Start();
+        } else {
+          phase_ = Phase::kRunning;
+          tick_deadline_ = Clock::now() + options_.lockstep_timeout;
+        }
+      }
+      return;
+    case sim_control_t::STOP:
+      if (m.episode == episode_ &&
+          (phase_ == Phase::kRunning || phase_ == Phase::kPaused || phase_ == Phase::kReady))
+        Finish(StepStatus::kFinished);
+      return;
+    default:
+      break;
+  }
+  ++stats_.dropped_messages;  // unknown command, or for an episode this sim is not running
+}
+
+void SimNode::Reset(const sim_control_t& m) {
+  ScenarioConfig config;
+  const std::string error = ConfigFromReset(m, &config);
+  if (!error.empty()) {
+    ++stats_.refused_resets;
+    stats_.last_error = "reset refused: " + error;
+    return;
+  }
+  // Reuse the world when the config is unchanged (building an ODE world is the slow part).
+  if (!scenario_ || config.kind != config_.kind || config.num_modules != config_.num_modules ||
+      config.joints != config_.joints || config.duration != config_.duration) {
+    scenario_ = MakeScenario(config);
+    config_ = config;
+  }
+  scenario_->Reset(static_cast<std::uint64_t>(m.seed));
+  episode_ = m.episode;
+  realtime_ = m.clock_mode == sim_control_t::MODE_REALTIME;
+  steps_left_ = -1;
+  const int n = scenario_->num_compartments();
+  commands_.assign(static_cast<std::size_t>(n),
+                   std::vector<double>(static_cast<std::size_t>(scenario_->num_actuators()), 0.0));
+  command_tick_.assign(static_cast<std::size_t>(n), -1);
+  commands_this_tick_ = 0;
+  next_state_time_ = 0;
+  phase_ = Phase::kReady;
+  ++stats_.episodes;
+  bus::PublishTyped(*bus_, channels_.Topology(), [&] {
+    auto t = TopologyMessage(*scenario_, episode_);
+    t.utime = bus::NowUtime();
+    return t;
+  }());
+  PublishClock(sim_clock_t::RESET);
+  PublishState(0.0);
+}
+
+void SimNode::Start() {
+  phase_ = Phase::kRunning;
+  PublishTickStart();
+}
+
+void SimNode::OnHinge(const std::string& channel, const hinge_command_t& m) {
+  if (!scenario_ || m.episode != episode_ || channel != channels_.Hinge(m.module)) {
+    ++stats_.dropped_messages;  // foreign episode, or a module speaking for another
+    return;
+  }
+  if (!CheckHinge(m, *scenario_).empty()) {
+    ++stats_.dropped_messages;  // NaN, out of range, wrong size: never reaches the physics
+    return;
+  }
+  const auto i = static_cast<std::size_t>(m.module);
+  if (!realtime_) {
+    if (m.tick < scenario_->tick()) {
+      ++stats_.late_commands;
+      return;
+    }
+    if (m.tick > scenario_->tick()) {
+      ++stats_.dropped_messages;  // a tick that has not started
+      return;
+    }
+    if (command_tick_[i] != m.tick) ++commands_this_tick_;
+  }
+  commands_[i] = m.values;
+  command_tick_[i] = m.tick;
+}
+
+bool SimNode::ReadyToAdvance(Clock::time_point now) const {
+  if (phase_ != Phase::kRunning) return false;
+  if (realtime_) return now >= tick_deadline_;
+  return commands_this_tick_ == scenario_->num_compartments() || now >= tick_deadline_;
+}
+
+void SimNode::Poll(std::chrono::microseconds max_wait) {
+  auto wait = max_wait;
+  if (phase_ == Phase::kRunning) {
+    const auto to_deadline =
+        std::chrono::duration_cast<std::chrono::microseconds>(tick_deadline_ - Clock::now());
+    wait = std::clamp(to_deadline, std::chrono::microseconds(0), max_wait);
+    if (!realtime_ && commands_this_tick_ == scenario_->num_compartments())
+      wait = std::chrono::microseconds(0);
+  }
+  bus_->Handle(wait);
+  if (ReadyToAdvance(Clock::now())) Advance();
+}
+
+void SimNode::Advance() {
+  const int n = scenario_->num_compartments();
+  for (int c = 0; c < n; ++c) {
+    const auto i = static_cast<std::size_t>(c);
+    if (!realtime_ && command_tick_[i] != scenario_->tick())
+      ++stats_.missed_commands;  // keeps the last one
+    if (command_tick_[i] >= 0) {
+      scenario_->SetActuators(c, commands_[i].data());
+      ++stats_.commands;
+    }
+  }
+  const double period = 1.0 / options_.state_rate;
+  const StepStatus status = scenario_->Step([&](double t) {
+    if (t + 1e-9 >= next_state_time_) {
+      PublishState(t);
+      next_state_time_ += period;
+    }
+  });
+  ++stats_.ticks;
+  commands_this_tick_ = 0;
+  if (status != StepStatus::kRunning) {
+    Finish(status);
+    return;
+  }
+  if (steps_left_ > 0 && --steps_left_ == 0) {
+    phase_ = Phase::kPaused;
+    steps_left_ = -1;
+    PublishClock(sim_clock_t::PAUSED);
+  }
+  PublishTickStart();
+}
+
+void SimNode::PublishTickStart() {
+  const auto now = Clock::now();
+  if (realtime_) {
+    const auto period = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(scenario_->control_period()));
+    // Keep pace with the wall clock; after a stall, do not race to catch up.
+    tick_deadline_ = std::max(tick_deadline_ + period, now);
+    if (scenario_->tick() == 0) tick_deadline_ = now + period;
+  } else {
+    tick_deadline_ = now + options_.lockstep_timeout;
+  }
+  for (int c = 0; c < scenario_->num_compartments(); ++c) {
+    auto m = SensorsMessage(*scenario_, c, episode_);
+    m.utime = bus::NowUtime();
+    bus::PublishTyped(*bus_, channels_.Sensors(c), m);
+  }
+  PublishClock(phase_ == Phase::kPaused ? sim_clock_t::PAUSED : sim_clock_t::RUNNING);
+  if (realtime_ && scenario_->tick() % 20 == 0) {  // lets a late module learn the docking
+    auto t = TopologyMessage(*scenario_, episode_);
+    t.utime = bus::NowUtime();
+    bus::PublishTyped(*bus_, channels_.Topology(), t);
+  }
+}
+
+void SimNode::PublishClock(std::int8_t run_state) {
+  sim_clock_t c{};
+  c.utime = bus::NowUtime();
+  c.episode = episode_;
+  c.tick = scenario_ ? scenario_->tick() : 0;
+  c.sim_time = scenario_ ? scenario_->sim_time() : 0;
+  c.control_period = scenario_ ? scenario_->control_period() : 0;
+  c.clock_mode = realtime_ ? sim_clock_t::MODE_REALTIME : sim_clock_t::MODE_LOCKSTEP;
+  c.run_state = run_state;
+  bus::PublishTyped(*bus_, channels_.SimClock(), c);
+}
+
+void SimNode::PublishState(double sim_time) {
+  scenario_->Bodies(&bodies_);
+  auto m = StateMessage(bodies_, episode_, scenario_->tick(), sim_time);
+  m.utime = bus::NowUtime();
+  bus::PublishTyped(*bus_, channels_.SimState(), m);
+}
+
+void SimNode::Finish(StepStatus status) {
+  if (status == StepStatus::kFailed) {
+    phase_ = Phase::kFailed;
+    stats_.last_error = scenario_->error();
+    PublishClock(sim_clock_t::FAILED);
+    return;
+  }
+  phase_ = Phase::kFinished;
+  PublishState(scenario_->sim_time());
+  PublishClock(sim_clock_t::FINISHED);
+}
+
+}  // namespace ahhs::sim

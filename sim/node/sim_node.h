@@ -1,0 +1,100 @@
+// The simulator's protocol role (docs/protocol.md): obeys SIM/CONTROL, publishes SENSORS,
+// TOPOLOGY, CLOCK and STATE, applies HINGE commands, in lockstep or at wall-clock pace.
+// It sees only a Bus, so it runs as its own process (udpm://) or inside the fused arena (memq://).
+#pragma once
+
+#include <ahhs/hinge_command_t.hpp>
+#include <ahhs/sim_control_t.hpp>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bus/bus.h"
+#include "bus/channels.h"
+#include "bus/typed.h"
+#include "sim/core/scenario.h"
+
+namespace ahhs::sim {
+
+struct SimNodeOptions {
+  std::string arena = bus::kDefaultArena;
+  // Lockstep: how long the sim waits for every module's HINGE(t) before it goes on with the
+  // last command of the missing ones (counted in stats().missed_commands).
+  std::chrono::milliseconds lockstep_timeout{2000};
+  double state_rate = 40.0;  // SIM/STATE messages per simulated second (>= 30)
+};
+
+struct SimNodeStats {
+  std::uint64_t episodes = 0;
+  std::uint64_t ticks = 0;
+  std::uint64_t commands = 0;          // HINGE commands applied
+  std::uint64_t missed_commands = 0;   // lockstep: a module's HINGE(t) missing at the timeout
+  std::uint64_t late_commands = 0;     // lockstep: HINGE for a tick already stepped
+  std::uint64_t dropped_messages = 0;  // undecodable, foreign episode, invalid values
+  std::uint64_t refused_resets = 0;
+  std::string last_error;  // why the last reset was refused or the episode failed
+};
+
+class SimNode {
+ public:
+  enum class Phase { kIdle, kReady, kRunning, kPaused, kFinished, kFailed };
+
+  SimNode(bus::Bus* bus, SimNodeOptions options);
+  SimNode(const SimNode&) = delete;
+  SimNode& operator=(const SimNode&) = delete;
+
+  // Dispatches messages (waiting at most max_wait for one) and advances the episode as far as
+  // its clock allows. Never blocks longer than max_wait.
+  void Poll(std::chrono::microseconds max_wait);
+
+  Phase phase() const { return phase_; }
+  std::int64_t episode() const { return episode_; }
+  const Scenario* scenario() const { return scenario_.get(); }
+  // Counters, including messages that failed to decode.
+  SimNodeStats stats() const {
+    SimNodeStats s = stats_;
+    s.dropped_messages += control_counters_.dropped + hinge_counters_.dropped;
+    return s;
+  }
+  bool realtime() const { return realtime_; }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  void OnControl(const sim_control_t& msg);
+  void OnHinge(const std::string& channel, const hinge_command_t& msg);
+  void Reset(const sim_control_t& msg);
+  void Start();
+  bool ReadyToAdvance(Clock::time_point now) const;
+  void Advance();
+  void PublishTickStart();
+  void PublishClock(std::int8_t run_state);
+  void PublishState(double sim_time);
+  void Finish(StepStatus status);
+
+  bus::Bus* bus_;
+  SimNodeOptions options_;
+  bus::ArenaChannels channels_;
+  bus::DecodeCounters control_counters_, hinge_counters_;
+  SimNodeStats stats_;
+
+  Phase phase_ = Phase::kIdle;
+  std::unique_ptr<Scenario> scenario_;
+  ScenarioConfig config_;
+  std::int64_t episode_ = 0;
+  bool realtime_ = false;
+  std::int64_t steps_left_ = -1;  // STEP N: ticks to go before pausing; -1 = run freely
+
+  // Latest command per module and the tick it answered; whether HINGE(current tick) arrived.
+  std::vector<std::vector<double>> commands_;
+  std::vector<std::int64_t> command_tick_;
+  int commands_this_tick_ = 0;
+  Clock::time_point tick_deadline_;  // lockstep timeout / real-time tick end
+  double next_state_time_ = 0;
+  std::vector<BodyState> bodies_;  // scratch
+};
+
+const char* PhaseName(SimNode::Phase phase);
+
+}  // namespace ahhs::sim

@@ -1,0 +1,246 @@
+// The simulator's protocol role over memq://, driven by fake modules in the test.
+#include "sim/node/sim_node.h"
+
+#include <ahhs/module_sensors_t.hpp>
+#include <ahhs/sim_clock_t.hpp>
+#include <ahhs/sim_state_t.hpp>
+#include <ahhs/topology_t.hpp>
+#include <catch2/catch.hpp>
+#include <set>
+
+#include "bus/lcm_bus.h"
+#include "sim/core/pendulum.h"
+
+using namespace ahhs;
+using namespace std::chrono_literals;
+
+namespace {
+
+sim_control_t Control(std::int8_t command, std::int64_t episode) {
+  sim_control_t m{};
+  m.command = command;
+  m.episode = episode;
+  m.scenario = "pendulum";
+  m.num_modules = 2;
+  m.joints = sim_control_t::JOINTS_DAMPED;
+  m.clock_mode = sim_control_t::MODE_LOCKSTEP;
+  return m;
+}
+
+// A deterministic closed-loop policy: each compartment drives its own actuator from its sensors.
+double Policy(int compartment, const double* s) {
+  return compartment == 0 ? std::clamp(s[0] - s[2] + 0.3 * s[8], -1.0, 1.0)
+                          : std::clamp(s[1] - s[3] - 0.3 * s[9], -1.0, 1.0);
+}
+
+// Fake modules: answer SENSORS(t) with HINGE(t) computed by Policy.
+struct FakeModules {
+  bus::Bus& bus;
+  bus::ArenaChannels ch;
+  std::int64_t episode;
+  std::set<int> silent;  // modules that never answer
+  int sensors_seen = 0;
+  FakeModules(bus::Bus& b, std::int64_t ep) : bus(b), episode(ep) {
+    bus::SubscribeTyped<module_sensors_t>(
+        bus, "AHHS/MODULE[0-9]+/SENSORS", [this](const std::string&, const module_sensors_t& m) {
+          ++sensors_seen;
+          if (silent.count(m.module)) return;
+          hinge_command_t h{};
+          h.episode = m.episode;
+          h.tick = m.tick;
+          h.module = m.module;
+          h.num_actuators = 2;
+          h.values = {0, 0};
+          h.present = {m.module == 0, m.module == 1};
+          h.values[static_cast<std::size_t>(m.module)] = Policy(m.module, m.values.data());
+          h.target_angle = std::nan("");
+          bus::PublishTyped(bus, ch.Hinge(m.module), h);
+        });
+  }
+};
+
+void RunToEnd(sim::SimNode& node) {
+  for (int k = 0; k < 100000 && node.phase() == sim::SimNode::Phase::kRunning; ++k) node.Poll(10ms);
+}
+
+}  // namespace
+
+TEST_CASE("lockstep over the bus equals the same policy run in-process, bit for bit",
+          "[sim][node]") {
+  bus::LcmBus bus("memq://");
+  sim::SimNode node(&bus, {});
+  FakeModules modules(bus, 7);
+  int states = 0, clocks = 0, topologies = 0;
+  double last_state_time = -1;
+  bus::SubscribeTyped<sim_state_t>(bus, "AHHS/SIM/STATE",
+                                   [&](const std::string&, const sim_state_t& m) {
+                                     ++states;
+                                     CHECK(m.sim_time >= last_state_time);
+                                     last_state_time = m.sim_time;
+                                   });
+  bus::SubscribeTyped<sim_clock_t>(bus, "AHHS/SIM/CLOCK",
+                                   [&](const std::string&, const sim_clock_t&) { ++clocks; });
+  bus::SubscribeTyped<topology_t>(bus, "AHHS/TOPOLOGY",
+                                  [&](const std::string&, const topology_t& t) {
+                                    ++topologies;
+                                    CHECK(t.num_links == 1);
+                                  });
+
+  auto reset = Control(sim_control_t::RESET, 7);
+  reset.seed = 99;
+  reset.duration = 20.0;  // 400 ticks
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);
+  node.Poll(10ms);
+  REQUIRE(node.phase() == sim::SimNode::Phase::kReady);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", Control(sim_control_t::START, 7));
+  node.Poll(10ms);
+  RunToEnd(node);
+  REQUIRE(node.phase() == sim::SimNode::Phase::kFinished);
+  CHECK(node.stats().missed_commands == 0);
+  CHECK(node.stats().ticks == 400);
+
+  // The same policy, in-process.
+  sim::ScenarioConfig config;
+  config.kind = sim::ScenarioKind::kPendulum;
+  config.duration = 20.0;
+  sim::PendulumScenario direct(config);
+  direct.Reset(99);
+  double s[10], a[2];
+  while (true) {
+    for (int c = 0; c < 2; ++c) {
+      direct.ReadSensors(c, s);
+      a[0] = a[1] = 0;
+      a[c] = Policy(c, s);
+      direct.SetActuators(c, a);
+    }
+    if (direct.Step() != sim::StepStatus::kRunning) break;
+  }
+  CHECK(node.scenario()->Fitness() == direct.Fitness());
+  CHECK(node.scenario()->Fitness() != 0.0);
+  bus.Handle(0us);
+  CHECK(states >= 30 * 20);  // at least 30 Hz of simulated time
+  CHECK(clocks >= 400);
+  CHECK(topologies == 1);
+}
+
+TEST_CASE("bad commands are counted and dropped; a silent module times out", "[sim][node]") {
+  bus::LcmBus bus("memq://");
+  sim::SimNodeOptions options;
+  options.lockstep_timeout = 5ms;
+  sim::SimNode node(&bus, options);
+  FakeModules modules(bus, 3);
+  modules.silent = {1};
+  auto reset = Control(sim_control_t::RESET, 3);
+  reset.duration = 1.0;  // 20 ticks
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);
+  node.Poll(1ms);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", Control(sim_control_t::START, 3));
+  node.Poll(1ms);
+  // Garbage, a foreign episode, NaN, a module speaking for another, a future tick.
+  const char junk[] = "garbage";
+  bus.Publish("AHHS/MODULE1/HINGE", junk, sizeof junk);
+  hinge_command_t h{};
+  h.episode = 4;
+  h.module = 1;
+  h.num_actuators = 2;
+  h.values = {0, 1};
+  h.present = {false, true};
+  bus::PublishTyped(bus, "AHHS/MODULE1/HINGE", h);
+  h.episode = 3;
+  h.values = {0, std::nan("")};
+  bus::PublishTyped(bus, "AHHS/MODULE1/HINGE", h);
+  h.values = {0, 1};
+  bus::PublishTyped(bus, "AHHS/MODULE0/HINGE", h);
+  h.tick = 1000;
+  bus::PublishTyped(bus, "AHHS/MODULE1/HINGE", h);
+  RunToEnd(node);
+  REQUIRE(node.phase() == sim::SimNode::Phase::kFinished);
+  CHECK(node.stats().dropped_messages == 5);
+  CHECK(node.stats().missed_commands == 20);  // module 1, every tick
+  // None of the dropped messages reached the physics: the run equals one where module 1's
+  // actuator stayed 0 throughout.
+  sim::ScenarioConfig config;
+  config.kind = sim::ScenarioKind::kPendulum;
+  config.duration = 1.0;
+  sim::PendulumScenario direct(config);
+  direct.Reset(0);
+  double s[10], a[2] = {0, 0};
+  while (true) {
+    direct.ReadSensors(0, s);
+    a[0] = Policy(0, s);
+    direct.SetActuators(0, a);
+    if (direct.Step() != sim::StepStatus::kRunning) break;
+  }
+  const auto& p = static_cast<const sim::PendulumScenario&>(*node.scenario());
+  CHECK(p.state().x == direct.state().x);
+  CHECK(p.Fitness() == direct.Fitness());
+}
+
+TEST_CASE("STEP advances exactly N ticks, PAUSE holds, STOP ends", "[sim][node]") {
+  bus::LcmBus bus("memq://");
+  sim::SimNode node(&bus, {});
+  FakeModules modules(bus, 5);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", Control(sim_control_t::RESET, 5));
+  node.Poll(1ms);
+  auto step = Control(sim_control_t::STEP, 5);
+  step.steps = 7;
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", step);
+  for (int k = 0; k < 100; ++k) node.Poll(1ms);
+  CHECK(node.phase() == sim::SimNode::Phase::kPaused);
+  CHECK(node.scenario()->tick() == 7);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", Control(sim_control_t::START, 5));
+  for (int k = 0; k < 10; ++k) node.Poll(1ms);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", Control(sim_control_t::PAUSE, 5));
+  node.Poll(1ms);
+  const auto held = node.scenario()->tick();
+  CHECK(held > 7);
+  for (int k = 0; k < 10; ++k) node.Poll(1ms);
+  CHECK(node.scenario()->tick() == held);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", Control(sim_control_t::STOP, 6));  // another episode
+  node.Poll(1ms);
+  CHECK(node.phase() == sim::SimNode::Phase::kPaused);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", Control(sim_control_t::STOP, 5));
+  node.Poll(1ms);
+  CHECK(node.phase() == sim::SimNode::Phase::kFinished);
+}
+
+TEST_CASE("a bad reset is refused with a reason", "[sim][node]") {
+  bus::LcmBus bus("memq://");
+  sim::SimNode node(&bus, {});
+  auto reset = Control(sim_control_t::RESET, 1);
+  reset.scenario = "walker";
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);
+  node.Poll(1ms);
+  CHECK(node.phase() == sim::SimNode::Phase::kIdle);
+  CHECK_THAT(node.stats().last_error, Catch::Contains("unknown scenario"));
+  reset.scenario = "gait";
+  reset.num_modules = 1;
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);
+  node.Poll(1ms);
+  CHECK(node.stats().refused_resets == 2);
+}
+
+TEST_CASE("real time: the latest command is used whatever tick it answered", "[sim][node]") {
+  bus::LcmBus bus("memq://");
+  sim::SimNode node(&bus, {});
+  auto reset = Control(sim_control_t::RESET, 9);
+  reset.clock_mode = sim_control_t::MODE_REALTIME;
+  reset.duration = 0.25;  // 5 ticks, 0.25 s of wall time
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);
+  node.Poll(1ms);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", Control(sim_control_t::START, 9));
+  node.Poll(1ms);
+  hinge_command_t h{};
+  h.episode = 9;
+  h.tick = 0;
+  h.module = 1;
+  h.num_actuators = 2;
+  h.values = {0, 1};
+  h.present = {false, true};
+  bus::PublishTyped(bus, "AHHS/MODULE1/HINGE", h);  // sent once, used every tick
+  RunToEnd(node);
+  REQUIRE(node.phase() == sim::SimNode::Phase::kFinished);
+  CHECK(node.stats().missed_commands == 0);
+  const auto& p = static_cast<const sim::PendulumScenario&>(*node.scenario());
+  CHECK(p.state().x > 0.05);  // pushed right all along
+}

@@ -18,6 +18,9 @@ module_sensors_t SensorsMessage(const Scenario& scenario, int module, std::int64
   for (int j = 0; j < n; ++j)
     m.present[static_cast<std::size_t>(j)] = scenario.sensor_owned(module, j);
   m.hinge_angle = scenario.HingeAngle(module);
+  m.num_actuators = static_cast<std::int16_t>(scenario.num_actuators());
+  for (int a = 0; a < scenario.num_actuators(); ++a)
+    m.actuator_present.push_back(scenario.actuator_owned(module, a));
   return m;
 }
 

@@ -33,6 +33,8 @@ inline module_sensors_t Fixture<module_sensors_t>() {
   m.values = {0.0, 0.25, 0.5, 1.0};
   m.present = {true, true, false, true};
   m.hinge_angle = -0.5;
+  m.num_actuators = 2;
+  m.actuator_present = {false, true};
   return m;
 }
 

@@ -1,0 +1,47 @@
+// ahhs-module: one module's hormone controller as its own process on the bus.
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+
+#include "bus/lcm_bus.h"
+#include "modules/node/module_node.h"
+
+namespace {
+std::atomic<bool> g_stop{false};
+void OnSignal(int) { g_stop = true; }
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"ahhs-module: one module's AHHS controller on the bus (docs/protocol.md)"};
+  ahhs::modules::ModuleNodeOptions options;
+  std::string url = ahhs::bus::kDefaultLcmUrl;
+  int timeout_ms = 2000;
+  app.add_option("--id", options.id, "module id (0-based)")->required()->check(CLI::Range(0, 9999));
+  app.add_option("--lcm-url", url, "LCM URL")->capture_default_str();
+  app.add_option("--arena", options.arena, "arena name: channel prefix")->capture_default_str();
+  app.add_option("--hormone-timeout-ms", timeout_ms, "longest wait for neighbours' hormone packets")
+      ->check(CLI::Range(1, 600000))
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  options.hormone_timeout = std::chrono::milliseconds(timeout_ms);
+  try {
+    ahhs::bus::LcmBus bus(url);
+    ahhs::modules::ModuleNode node(&bus, options);
+    std::signal(SIGINT, OnSignal);
+    std::signal(SIGTERM, OnSignal);
+    while (!g_stop) node.Poll(std::chrono::milliseconds(100));
+    const auto s = node.stats();
+    std::fprintf(stderr,
+                 "ahhs-module %d: %llu ticks, %llu missing packets, %llu late, %llu dropped\n",
+                 options.id, static_cast<unsigned long long>(s.ticks),
+                 static_cast<unsigned long long>(s.missing_packets),
+                 static_cast<unsigned long long>(s.late_messages),
+                 static_cast<unsigned long long>(s.dropped_messages));
+  } catch (const std::exception& e) {
+    std::cerr << "ahhs-module: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,229 @@
+#include "modules/node/module_node.h"
+
+#include <ahhs/hinge_command_t.hpp>
+#include <ahhs/module_status_t.hpp>
+#include <algorithm>
+#include <cmath>
+
+#include "modules/node/genome_codec.h"
+
+namespace ahhs::modules {
+
+ModuleNode::ModuleNode(bus::Bus* bus, ModuleNodeOptions options)
+    : bus_(bus), options_(std::move(options)), channels_(options_.arena) {
+  bus::SubscribeTyped<genome_t>(
+      *bus_, channels_.Genome(), [this](const std::string&, const genome_t& m) { OnGenome(m); },
+      &counters_);
+  bus::SubscribeTyped<topology_t>(
+      *bus_, channels_.Topology(),
+      [this](const std::string&, const topology_t& m) { OnTopology(m); }, &counters_);
+  bus::SubscribeTyped<module_sensors_t>(
+      *bus_, channels_.Sensors(options_.id),
+      [this](const std::string&, const module_sensors_t& m) { OnSensors(m); }, &counters_);
+  bus::SubscribeTyped<hormone_packet_t>(
+      *bus_, channels_.AnyHormone(),
+      [this](const std::string& ch, const hormone_packet_t& m) {
+        if (ch != channels_.Hormone(m.from_module)) {
+          ++stats_.dropped_messages;  // a module speaking for another
+          return;
+        }
+        if (m.to_module == options_.id) OnHormone(m);
+      },
+      &counters_);
+  next_heartbeat_ = Clock::now();
+}
+
+ModuleNodeStats ModuleNode::stats() const {
+  ModuleNodeStats s = stats_;
+  s.dropped_messages += counters_.dropped;
+  return s;
+}
+
+void ModuleNode::NewEpisode(std::int64_t episode) {
+  episode_ = episode;
+  controller_.reset();
+  state_.reset();
+  have_topology_ = false;
+  neighbours_.clear();
+  next_tick_ = 0;
+  sensors_.reset();
+  packets_.clear();
+}
+
+void ModuleNode::OnGenome(const genome_t& m) {
+  if (m.episode != episode_) NewEpisode(m.episode);
+  Genome g;
+  const std::string error = GenomeFromMessage(m, &g);
+  if (!error.empty()) {
+    ++stats_.dropped_messages;
+    stats_.last_error = "genome refused: " + error;
+    PublishStatus(module_status_t::ERROR);
+    return;
+  }
+  controller_ = std::make_unique<Controller>(std::move(g));
+  genome_hash_ = static_cast<std::uint64_t>(m.genome_hash);
+  state_ = MakeState(*controller_);
+  sensor_present_ = std::make_unique<bool[]>(static_cast<std::size_t>(controller_->num_sensors()));
+  actuator_present_ =
+      std::make_unique<bool[]>(static_cast<std::size_t>(controller_->num_actuators()));
+  if (ready()) PublishStatus(module_status_t::READY);
+}
+
+void ModuleNode::OnTopology(const topology_t& m) {
+  if (m.episode != episode_) NewEpisode(m.episode);
+  neighbours_.clear();
+  for (int k = 0; k < m.num_links; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    if (m.module_a[i] == options_.id) neighbours_.push_back(m.module_b[i]);
+    if (m.module_b[i] == options_.id) neighbours_.push_back(m.module_a[i]);
+  }
+  std::sort(neighbours_.begin(), neighbours_.end());
+  neighbours_.erase(std::unique(neighbours_.begin(), neighbours_.end()), neighbours_.end());
+  if (static_cast<int>(neighbours_.size()) > kDefaultPorts) neighbours_.resize(kDefaultPorts);
+  have_topology_ = true;
+  if (ready()) PublishStatus(module_status_t::READY);
+}
+
+void ModuleNode::OnSensors(const module_sensors_t& m) {
+  if (m.episode != episode_ || m.module != options_.id || !ready()) {
+    ++stats_.dropped_messages;
+    return;
+  }
+  if (m.num_sensors != controller_->num_sensors() ||
+      m.num_actuators != controller_->num_actuators()) {
+    ++stats_.dropped_messages;
+    stats_.last_error = "sensor/actuator shape does not match the genome";
+    return;
+  }
+  for (std::size_t j = 0; j < m.values.size(); ++j) {
+    if (m.present[j] && (!std::isfinite(m.values[j]) || m.values[j] < 0 || m.values[j] > 1)) {
+      ++stats_.dropped_messages;
+      return;
+    }
+  }
+  if (m.tick < next_tick_) {
+    ++stats_.late_messages;
+    return;
+  }
+  if (m.tick > next_tick_) {
+    // The sim went on without us (we missed a tick): jump to its tick.
+    stats_.late_messages += static_cast<std::uint64_t>(m.tick - next_tick_);
+    next_tick_ = m.tick;
+  }
+  sensors_ = m;
+  sensors_arrival_ = Clock::now();
+}
+
+void ModuleNode::OnHormone(const hormone_packet_t& m) {
+  if (m.episode != episode_ || !ready() || m.num_hormones != controller_->num_hormones() ||
+      !std::binary_search(neighbours_.begin(), neighbours_.end(), m.from_module)) {
+    ++stats_.dropped_messages;
+    return;
+  }
+  for (double a : m.amounts) {
+    if (!std::isfinite(a) || a < 0 || a > 1) {
+      ++stats_.dropped_messages;
+      return;
+    }
+  }
+  if (m.tick < next_tick_ - 1) {
+    ++stats_.late_messages;
+    return;
+  }
+  packets_[{m.tick, m.from_module}] = m.amounts;
+}
+
+bool ModuleNode::TryStep(Clock::time_point now) {
+  if (!ready() || !sensors_ || sensors_->tick != next_tick_) return false;
+  const std::int64_t t = next_tick_;
+  int have = 0;
+  if (t > 0)
+    for (int n : neighbours_) have += packets_.count({t - 1, n}) ? 1 : 0;
+  const bool all_in = t == 0 || have == static_cast<int>(neighbours_.size());
+  if (!all_in && now < sensors_arrival_ + options_.hormone_timeout) return false;
+
+  // 1. Received hormone, in increasing sender id.
+  if (t > 0) {
+    for (int n : neighbours_) {
+      auto it = packets_.find({t - 1, n});
+      if (it == packets_.end()) {
+        ++stats_.missing_packets;
+        continue;
+      }
+      ReceiveHormones(it->second.data(), &*state_);
+    }
+  }
+  // 2-6. Step on this tick's sensors.
+  for (int j = 0; j < controller_->num_sensors(); ++j)
+    sensor_present_[j] = sensors_->present[static_cast<std::size_t>(j)];
+  for (int a = 0; a < controller_->num_actuators(); ++a)
+    actuator_present_[a] = sensors_->actuator_present[static_cast<std::size_t>(a)];
+  TickInput in;
+  in.sensors = sensors_->values.data();
+  in.sensor_present = sensor_present_.get();
+  in.actuator_present = actuator_present_.get();
+  in.num_neighbours = static_cast<int>(neighbours_.size());
+  Step(*controller_, in, &*state_);
+
+  const std::int64_t utime = bus::NowUtime();
+  for (int n : neighbours_) {
+    hormone_packet_t p{};
+    p.utime = utime;
+    p.episode = episode_;
+    p.tick = t;
+    p.from_module = options_.id;
+    p.to_module = n;
+    p.num_hormones = static_cast<std::int16_t>(controller_->num_hormones());
+    p.amounts.assign(state_->outflow.data(), state_->outflow.data() + state_->outflow.size());
+    bus::PublishTyped(*bus_, channels_.Hormone(options_.id), p);
+  }
+  hinge_command_t h{};
+  h.utime = utime;
+  h.episode = episode_;
+  h.tick = t;
+  h.module = options_.id;
+  h.num_actuators = static_cast<std::int16_t>(controller_->num_actuators());
+  h.values.assign(state_->actuators.data(), state_->actuators.data() + state_->actuators.size());
+  h.present.assign(sensors_->actuator_present.begin(), sensors_->actuator_present.end());
+  h.target_angle = M_PI / 2 * h.values[0];
+  bus::PublishTyped(*bus_, channels_.Hinge(options_.id), h);
+
+  ++stats_.ticks;
+  ++next_tick_;
+  packets_.erase(packets_.begin(), packets_.lower_bound({t, -1}));  // keep tick t onwards
+  if (status_ != module_status_t::RUNNING) PublishStatus(module_status_t::RUNNING);
+  return true;
+}
+
+void ModuleNode::Poll(std::chrono::microseconds max_wait) {
+  auto wait = max_wait;
+  if (sensors_ && sensors_->tick == next_tick_) {
+    const auto left = std::chrono::duration_cast<std::chrono::microseconds>(
+        sensors_arrival_ + options_.hormone_timeout - Clock::now());
+    wait = std::clamp(left, std::chrono::microseconds(0), max_wait);
+  }
+  bus_->Handle(wait);
+  while (TryStep(Clock::now())) {
+  }
+  if (Clock::now() >= next_heartbeat_) PublishStatus(status_);
+}
+
+void ModuleNode::PublishStatus(std::int8_t state) {
+  status_ = state;
+  module_status_t s{};
+  s.utime = bus::NowUtime();
+  s.episode = episode_;
+  s.tick = next_tick_ - 1;
+  s.module = options_.id;
+  s.state = state;
+  s.genome_hash = static_cast<std::int64_t>(genome_hash_);
+  const auto st = stats();
+  s.missed_ticks = static_cast<std::int32_t>(st.missing_packets);
+  s.late_messages = static_cast<std::int32_t>(st.late_messages);
+  s.dropped_messages = static_cast<std::int32_t>(st.dropped_messages);
+  s.message = st.last_error;
+  bus::PublishTyped(*bus_, channels_.Status(options_.id), s);
+  next_heartbeat_ = Clock::now() + options_.heartbeat;
+}
+
+}  // namespace ahhs::modules

@@ -1,0 +1,84 @@
+// One module's hormone controller on the bus (docs/protocol.md): GENOME, TOPOLOGY, its own
+// SENSORS and its docked neighbours' HORMONE packets in; HINGE, HORMONE packets and STATUS out.
+// Lockstep: tick t is stepped once SENSORS(t) and every neighbour's packet of tick t-1 are in,
+// or when the hormone timeout passes (a missing packet is lost hormone, counted).
+#pragma once
+
+#include <ahhs/genome_t.hpp>
+#include <ahhs/hormone_packet_t.hpp>
+#include <ahhs/module_sensors_t.hpp>
+#include <ahhs/topology_t.hpp>
+#include <chrono>
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "bus/bus.h"
+#include "bus/channels.h"
+#include "bus/typed.h"
+#include "modules/core/hormone_system.h"
+
+namespace ahhs::modules {
+
+struct ModuleNodeOptions {
+  int id = 0;
+  std::string arena = bus::kDefaultArena;
+  std::chrono::milliseconds hormone_timeout{2000};  // wait for neighbours' packets of t-1
+  std::chrono::milliseconds heartbeat{1000};
+};
+
+struct ModuleNodeStats {
+  std::uint64_t ticks = 0;
+  std::uint64_t missing_packets = 0;   // neighbour packets not there when the tick was stepped
+  std::uint64_t late_messages = 0;     // sensors or packets for ticks already stepped
+  std::uint64_t dropped_messages = 0;  // undecodable, foreign episode, invalid
+  std::string last_error;
+};
+
+class ModuleNode {
+ public:
+  ModuleNode(bus::Bus* bus, ModuleNodeOptions options);
+
+  // Dispatches messages (waiting at most max_wait) and steps every tick that is ready.
+  void Poll(std::chrono::microseconds max_wait);
+
+  bool ready() const { return controller_ != nullptr && have_topology_; }
+  std::int64_t episode() const { return episode_; }
+  std::int64_t next_tick() const { return next_tick_; }
+  const CompartmentState* state() const { return state_ ? &*state_ : nullptr; }
+  ModuleNodeStats stats() const;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  void OnGenome(const genome_t& msg);
+  void OnTopology(const topology_t& msg);
+  void OnSensors(const module_sensors_t& msg);
+  void OnHormone(const hormone_packet_t& msg);
+  void NewEpisode(std::int64_t episode);
+  bool TryStep(Clock::time_point now);
+  void PublishStatus(std::int8_t state);
+
+  bus::Bus* bus_;
+  ModuleNodeOptions options_;
+  bus::ArenaChannels channels_;
+  bus::DecodeCounters counters_;
+  ModuleNodeStats stats_;
+
+  std::int64_t episode_ = 0;
+  std::unique_ptr<Controller> controller_;
+  std::uint64_t genome_hash_ = 0;
+  std::optional<CompartmentState> state_;
+  bool have_topology_ = false;
+  std::vector<int> neighbours_;  // sorted ids
+  std::int64_t next_tick_ = 0;
+  std::optional<module_sensors_t> sensors_;  // SENSORS(next_tick_) once it arrived
+  Clock::time_point sensors_arrival_;
+  // Packets by (tick, sender): only ticks next_tick_-1 and later are kept.
+  std::map<std::pair<std::int64_t, int>, std::vector<double>> packets_;
+  std::unique_ptr<bool[]> sensor_present_, actuator_present_;  // masks of the current tick
+  Clock::time_point next_heartbeat_;
+  std::int8_t status_ = 0;
+};
+
+}  // namespace ahhs::modules

@@ -67,12 +67,10 @@ void SimNode::OnControl(const sim_control_t& m) {
       if (m.episode != episode_ || m.steps <= 0) break;
       if (phase_ == Phase::kReady || phase_ == Phase::kPaused) {
         steps_left_ = m.steps;
-        if (phase_ == Phase::kReady) {
+        if (phase_ == Phase::kReady)
           Start();
-        } else {
-          phase_ = Phase::kRunning;
-          tick_deadline_ = Clock::now() + options_.lockstep_timeout;
-        }
+        else
+          Resume();
       }
       return;
     case sim_control_t::STOP:
@@ -124,6 +122,15 @@ void SimNode::Reset(const sim_control_t& m) {
 void SimNode::Start() {
   phase_ = Phase::kRunning;
   PublishTickStart();
+}
+
+void SimNode::Resume() {
+  // The paused tick's sensors are already out; restart its clock from now.
+  phase_ = Phase::kRunning;
+  tick_deadline_ =
+      Clock::now() + (realtime_ ? std::chrono::duration_cast<Clock::duration>(
+                                      std::chrono::duration<double>(scenario_->control_period()))
+                                : Clock::duration(options_.lockstep_timeout));
 }
 
 void SimNode::OnHinge(const std::string& channel, const hinge_command_t& m) {

@@ -66,6 +66,7 @@ class SimNode {
   void OnHinge(const std::string& channel, const hinge_command_t& msg);
   void Reset(const sim_control_t& msg);
   void Start();
+  void Resume();
   bool ReadyToAdvance(Clock::time_point now) const;
   void Advance();
   void PublishTickStart();

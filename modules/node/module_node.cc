@@ -30,7 +30,14 @@ ModuleNode::ModuleNode(bus::Bus* bus, ModuleNodeOptions options)
         if (m.to_module == options_.id) OnHormone(m);
       },
       &counters_);
+  bus::SubscribeTyped<sim_clock_t>(
+      *bus_, channels_.SimClock(), [this](const std::string&, const sim_clock_t& m) { OnClock(m); },
+      &counters_);
   next_heartbeat_ = Clock::now();
+}
+
+void ModuleNode::OnClock(const sim_clock_t& m) {
+  if (m.episode == episode_) realtime_ = m.clock_mode == sim_clock_t::MODE_REALTIME;
 }
 
 ModuleNodeStats ModuleNode::stats() const {
@@ -126,7 +133,7 @@ void ModuleNode::OnHormone(const hormone_packet_t& m) {
       return;
     }
   }
-  if (m.tick < next_tick_ - 1) {
+  if (m.tick < next_tick_ - 1 && !realtime_) {
     ++stats_.late_messages;
     return;
   }
@@ -140,10 +147,15 @@ bool ModuleNode::TryStep(Clock::time_point now) {
   if (t > 0)
     for (int n : neighbours_) have += packets_.count({t - 1, n}) ? 1 : 0;
   const bool all_in = t == 0 || have == static_cast<int>(neighbours_.size());
-  if (!all_in && now < sensors_arrival_ + options_.hormone_timeout) return false;
+  if (!realtime_ && !all_in && now < sensors_arrival_ + options_.hormone_timeout) return false;
 
   // 1. Received hormone, in increasing sender id.
-  if (t > 0) {
+  if (realtime_) {  // every packet not yet added, oldest tick first
+    for (auto it = packets_.begin(); it != packets_.end() && it->first.first < t;) {
+      ReceiveHormones(it->second.data(), &*state_);
+      it = packets_.erase(it);
+    }
+  } else if (t > 0) {
     for (int n : neighbours_) {
       auto it = packets_.find({t - 1, n});
       if (it == packets_.end()) {
@@ -190,7 +202,8 @@ bool ModuleNode::TryStep(Clock::time_point now) {
 
   ++stats_.ticks;
   ++next_tick_;
-  packets_.erase(packets_.begin(), packets_.lower_bound({t, -1}));  // keep tick t onwards
+  if (!realtime_)
+    packets_.erase(packets_.begin(), packets_.lower_bound({t, -1}));  // keep tick t onwards
   if (status_ != module_status_t::RUNNING) PublishStatus(module_status_t::RUNNING);
   return true;
 }

@@ -1,12 +1,15 @@
 // One module's hormone controller on the bus (docs/protocol.md): GENOME, TOPOLOGY, its own
 // SENSORS and its docked neighbours' HORMONE packets in; HINGE, HORMONE packets and STATUS out.
 // Lockstep: tick t is stepped once SENSORS(t) and every neighbour's packet of tick t-1 are in,
-// or when the hormone timeout passes (a missing packet is lost hormone, counted).
+// or when the hormone timeout passes (a missing packet is lost hormone, counted). Real time
+// (learnt from SIM/CLOCK): a tick is stepped as soon as its SENSORS arrive, adding every packet
+// received since the last tick.
 #pragma once
 
 #include <ahhs/genome_t.hpp>
 #include <ahhs/hormone_packet_t.hpp>
 #include <ahhs/module_sensors_t.hpp>
+#include <ahhs/sim_clock_t.hpp>
 #include <ahhs/topology_t.hpp>
 #include <chrono>
 #include <map>
@@ -57,6 +60,7 @@ class ModuleNode {
   void OnHormone(const hormone_packet_t& msg);
   void NewEpisode(std::int64_t episode);
   bool TryStep(Clock::time_point now);
+  void OnClock(const sim_clock_t& msg);
   void PublishStatus(std::int8_t state);
 
   bus::Bus* bus_;
@@ -66,6 +70,7 @@ class ModuleNode {
   ModuleNodeStats stats_;
 
   std::int64_t episode_ = 0;
+  bool realtime_ = false;
   std::unique_ptr<Controller> controller_;
   std::uint64_t genome_hash_ = 0;
   std::optional<CompartmentState> state_;

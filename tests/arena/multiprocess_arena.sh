@@ -15,9 +15,9 @@ exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash -c '
   for case in "pendulum 2 15 1 ahhs2" "pendulum 2 15 2 ahhs1" "gait 5 5 3 ahhs2" "gait 4 5 4 ahhs1"; do
     set -- $case
     pids=()
-    "$bin/sim/app/ahhs-sim" --lcm-url "$url" --episodes 1 2>"$tmp/sim.err" & sim=$!
-    for ((m = 0; m < $2; m++)); do "$bin/modules/app/ahhs-module" --id $m --lcm-url "$url" 2>/dev/null & pids+=($!); done
-    if ! timeout 120 "$bin/tests/arena/arena_driver" --lcm-url "$url" --scenario $1 --modules $2 \
+    "$bin/bin/ahhs-sim" --lcm-url "$url" --episodes 1 2>"$tmp/sim.err" & sim=$!
+    for ((m = 0; m < $2; m++)); do "$bin/bin/ahhs-module" --id $m --lcm-url "$url" 2>/dev/null & pids+=($!); done
+    if ! timeout 120 "$bin/bin/arena_driver" --lcm-url "$url" --scenario $1 --modules $2 \
          --duration $3 --seed $4 --variant $5 >"$tmp/drv.out"; then
       echo "FAIL ($case): driver"; cat "$tmp/sim.err"; exit 1
     fi

@@ -1,0 +1,99 @@
+#include "evolver/fitness/fitness_node.h"
+
+#include <cmath>
+
+#include "sim/core/constants.h"
+
+namespace ahhs::evolver {
+
+std::int64_t EpisodeTicks(sim::ScenarioKind kind, double duration) {
+  if (kind == sim::ScenarioKind::kPendulum) {
+    const sim::PendulumConstants k;
+    return duration > 0 ? std::llround(duration / k.control_period) : k.ticks;
+  }
+  const sim::GaitConstants k;
+  return std::llround((duration > 0 ? duration : k.duration) / k.control_period);
+}
+
+FitnessNode::FitnessNode(bus::Bus* bus, std::string arena)
+    : bus_(bus), channels_(std::move(arena)) {
+  bus::SubscribeTyped<sim_control_t>(
+      *bus_, channels_.SimControl(),
+      [this](const std::string&, const sim_control_t& m) { OnControl(m); }, &counters_);
+  bus::SubscribeTyped<sim_state_t>(
+      *bus_, channels_.SimState(), [this](const std::string&, const sim_state_t& m) { OnState(m); },
+      &counters_);
+  bus::SubscribeTyped<sim_clock_t>(
+      *bus_, channels_.SimClock(), [this](const std::string&, const sim_clock_t& m) { OnClock(m); },
+      &counters_);
+}
+
+void FitnessNode::OnControl(const sim_control_t& m) {
+  if (m.command != sim_control_t::RESET) return;
+  if (m.episode == episode_ && monitor_) {  // a repeated RESET: acknowledge again
+    if (!final_) bus::PublishTyped(*bus_, channels_.Fitness(), Message(false, fitness_t::OK, ""));
+    return;
+  }
+  sim::ScenarioKind kind;
+  if (m.scenario == "gait") {
+    kind = sim::ScenarioKind::kGait;
+  } else if (m.scenario == "pendulum") {
+    kind = sim::ScenarioKind::kPendulum;
+  } else {
+    ++dropped_;
+    return;
+  }
+  episode_ = m.episode;
+  expected_ticks_ = EpisodeTicks(kind, m.duration);
+  monitor_ = std::make_unique<FitnessMonitor>(kind, 0.05, expected_ticks_);
+  final_.reset();
+  next_report_ = 1.0;
+  last_tick_ = 0;
+  // Acknowledge the episode: a running result at tick 0 tells the launcher the monitor is ready.
+  bus::PublishTyped(*bus_, channels_.Fitness(), Message(false, fitness_t::OK, ""));
+}
+
+void FitnessNode::OnState(const sim_state_t& m) {
+  if (!monitor_ || m.episode != episode_ || final_ || !monitor_->Add(m)) {
+    ++dropped_;
+    return;
+  }
+  last_tick_ = m.tick;
+  if (m.sim_time + 1e-9 >= next_report_) {
+    bus::PublishTyped(*bus_, channels_.Fitness(), Message(false, fitness_t::OK, ""));
+    next_report_ += 1.0;
+  }
+}
+
+void FitnessNode::OnClock(const sim_clock_t& m) {
+  if (!monitor_ || m.episode != episode_ || final_) return;
+  if (m.run_state == sim_clock_t::FINISHED) {
+    final_ = Message(true, fitness_t::OK, "");
+  } else if (m.run_state == sim_clock_t::FAILED) {
+    final_ = Message(true, fitness_t::ERROR, "the simulation failed (physics blew up)");
+  } else {
+    return;
+  }
+  bus::PublishTyped(*bus_, channels_.Fitness(), *final_);
+}
+
+fitness_t FitnessNode::Message(bool is_final, std::int8_t status, const std::string& text) const {
+  fitness_t f{};
+  f.utime = bus::NowUtime();
+  f.episode = episode_;
+  f.tick = last_tick_;
+  f.sim_time = static_cast<double>(monitor_->ticks_seen()) * 0.05;
+  f.fitness = monitor_->fitness();
+  f.cost = monitor_->cost();
+  f.is_final = is_final;
+  f.status = status;
+  f.states_seen = static_cast<std::int32_t>(monitor_->states_seen());
+  f.states_missed = static_cast<std::int32_t>(
+      is_final && !monitor_->complete() ? expected_ticks_ - monitor_->ticks_seen() : 0);
+  f.message = text;
+  return f;
+}
+
+void FitnessNode::Poll(std::chrono::microseconds max_wait) { bus_->Handle(max_wait); }
+
+}  // namespace ahhs::evolver

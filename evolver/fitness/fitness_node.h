@@ -1,0 +1,51 @@
+// The fitness monitor's protocol role: learns the episode from SIM/CONTROL RESET, follows
+// SIM/STATE, and publishes FITNESS (running, about once per simulated second, and final when
+// SIM/CLOCK says the episode finished or failed).
+#pragma once
+
+#include <ahhs/fitness_t.hpp>
+#include <ahhs/sim_clock_t.hpp>
+#include <ahhs/sim_control_t.hpp>
+#include <chrono>
+#include <memory>
+#include <optional>
+
+#include "bus/bus.h"
+#include "bus/channels.h"
+#include "bus/typed.h"
+#include "evolver/fitness/fitness_monitor.h"
+
+namespace ahhs::evolver {
+
+class FitnessNode {
+ public:
+  FitnessNode(bus::Bus* bus, std::string arena = bus::kDefaultArena);
+  void Poll(std::chrono::microseconds max_wait);
+
+  // The final result of the current episode, once published.
+  const std::optional<fitness_t>& final_result() const { return final_; }
+  std::int64_t episode() const { return episode_; }
+  std::uint64_t dropped_messages() const { return counters_.dropped + dropped_; }
+
+ private:
+  void OnControl(const sim_control_t& m);
+  void OnState(const sim_state_t& m);
+  void OnClock(const sim_clock_t& m);
+  fitness_t Message(bool is_final, std::int8_t status, const std::string& text) const;
+
+  bus::Bus* bus_;
+  bus::ArenaChannels channels_;
+  bus::DecodeCounters counters_;
+  std::uint64_t dropped_ = 0;
+  std::int64_t episode_ = 0;
+  std::int64_t expected_ticks_ = 0;
+  std::unique_ptr<FitnessMonitor> monitor_;
+  std::optional<fitness_t> final_;
+  double next_report_ = 1.0;
+  std::int64_t last_tick_ = 0;
+};
+
+// Ticks of an episode as a RESET describes it (duration 0 = the task's default).
+std::int64_t EpisodeTicks(sim::ScenarioKind kind, double duration);
+
+}  // namespace ahhs::evolver

@@ -1,0 +1,164 @@
+#include "tools/launch/episode_runner.h"
+
+#include <ahhs/fitness_t.hpp>
+#include <ahhs/module_status_t.hpp>
+#include <ahhs/sim_clock_t.hpp>
+#include <ahhs/sim_control_t.hpp>
+#include <memory>
+#include <set>
+#include <vector>
+
+#include "bus/channels.h"
+#include "bus/lcm_bus.h"
+#include "bus/typed.h"
+#include "evolver/fitness/fitness_node.h"
+#include "modules/node/genome_codec.h"
+#include "modules/node/module_node.h"
+#include "sim/node/sim_node.h"
+
+namespace ahhs::launch {
+
+using Clock = std::chrono::steady_clock;
+
+std::string CheckGenomeFits(const modules::Genome& g, const sim::ScenarioConfig& config) {
+  auto probe = sim::MakeScenario(config);
+  if (g.num_sensors != probe->num_sensors() || g.num_actuators != probe->num_actuators()) {
+    return "the genome has " + std::to_string(g.num_sensors) + " sensors and " +
+           std::to_string(g.num_actuators) + " actuators, but the " +
+           sim::ScenarioName(config.kind) + " scenario gives each module " +
+           std::to_string(probe->num_sensors()) + " sensors and " +
+           std::to_string(probe->num_actuators()) +
+           " actuators (make one with: ahhs-genome random --sensors " +
+           std::to_string(probe->num_sensors()) + " --actuators " +
+           std::to_string(probe->num_actuators()) + " ...)";
+  }
+  return "";
+}
+
+EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
+                         const std::function<void(std::chrono::microseconds)>& pump,
+                         const std::function<bool(std::string*)>& alive) {
+  EpisodeResult result;
+  const bus::ArenaChannels ch(spec.arena);
+  const int modules =
+      spec.config.kind == sim::ScenarioKind::kPendulum ? 2 : spec.config.num_modules;
+  std::set<int> ready;
+  bool sim_ready = false, monitor_ready = false;
+  std::optional<fitness_t> final_fitness;
+  std::int8_t run_state = -1;
+  const std::int64_t ep = spec.episode;
+  std::vector<int> subs;
+  subs.push_back(bus::SubscribeTyped<module_status_t>(
+      bus, ch.AnyStatus(), [&](const std::string&, const module_status_t& s) {
+        if (s.episode == ep &&
+            (s.state == module_status_t::READY || s.state == module_status_t::RUNNING))
+          ready.insert(s.module);
+        if (s.episode == ep && s.state == module_status_t::ERROR && result.error.empty())
+          result.error =
+              "module " + std::to_string(s.module) + " refused the episode: " + s.message;
+      }));
+  subs.push_back(bus::SubscribeTyped<sim_clock_t>(bus, ch.SimClock(),
+                                                  [&](const std::string&, const sim_clock_t& c) {
+                                                    if (c.episode != ep) return;
+                                                    run_state = c.run_state;
+                                                    if (c.run_state == sim_clock_t::RESET)
+                                                      sim_ready = true;
+                                                  }));
+  subs.push_back(bus::SubscribeTyped<fitness_t>(bus, ch.Fitness(),
+                                                [&](const std::string&, const fitness_t& f) {
+                                                  if (f.episode != ep) return;
+                                                  monitor_ready = true;
+                                                  if (f.is_final) final_fitness = f;
+                                                }));
+  auto finish = [&](EpisodeResult r) {
+    for (int id : subs) bus.Unsubscribe(id);
+    return r;
+  };
+
+  sim_control_t c{};
+  c.episode = ep;
+  c.seed = spec.seed;
+  c.scenario = sim::ScenarioName(spec.config.kind);
+  c.num_modules = modules;
+  c.joints = spec.config.joints == sim::Joints::kFixed ? sim_control_t::JOINTS_FIXED
+                                                       : sim_control_t::JOINTS_DAMPED;
+  c.duration = spec.config.duration;
+  c.clock_mode = spec.realtime ? sim_control_t::MODE_REALTIME : sim_control_t::MODE_LOCKSTEP;
+  const genome_t genome = modules::GenomeMessage(spec.genome, ep);
+
+  // Handshake: RESET + GENOME, repeated until the sim, every module and the monitor answered.
+  const auto handshake_end = Clock::now() + spec.handshake_timeout;
+  auto next_send = Clock::now();
+  std::string why;
+  while (!(sim_ready && monitor_ready && static_cast<int>(ready.size()) == modules)) {
+    if (!alive(&why)) return finish({false, 0, 0, why, 0});
+    if (!result.error.empty()) return finish(result);
+    if (Clock::now() > handshake_end) {
+      std::string missing = sim_ready ? "" : " the sim,";
+      if (!monitor_ready) missing += " the fitness monitor,";
+      for (int m = 0; m < modules; ++m)
+        if (!ready.count(m)) missing += " module " + std::to_string(m) + ",";
+      missing.pop_back();
+      return finish({false, 0, 0, "no answer to the episode handshake from" + missing, 0});
+    }
+    if (Clock::now() >= next_send) {
+      c.command = sim_control_t::RESET;
+      c.utime = bus::NowUtime();
+      bus::PublishTyped(bus, ch.SimControl(), c);
+      auto g = genome;
+      g.utime = bus::NowUtime();
+      bus::PublishTyped(bus, ch.Genome(), g);
+      next_send = Clock::now() + std::chrono::milliseconds(200);
+    }
+    pump(std::chrono::milliseconds(5));
+  }
+
+  c.command = sim_control_t::START;
+  c.utime = bus::NowUtime();
+  bus::PublishTyped(bus, ch.SimControl(), c);
+  const auto episode_end = Clock::now() + spec.episode_timeout;
+  auto next_genome = Clock::now() + std::chrono::seconds(1);
+  while (!final_fitness) {
+    if (!alive(&why)) return finish({false, 0, 0, why, 0});
+    if (Clock::now() > episode_end)
+      return finish({false, 0, 0, "the episode did not end in time", 0});
+    if (spec.realtime && Clock::now() >= next_genome) {  // lets a module that starts late join
+      auto g = genome;
+      g.utime = bus::NowUtime();
+      bus::PublishTyped(bus, ch.Genome(), g);
+      next_genome = Clock::now() + std::chrono::seconds(1);
+    }
+    pump(std::chrono::milliseconds(20));
+  }
+  if (final_fitness->status != fitness_t::OK)
+    return finish({false, 0, 0, final_fitness->message, 0});
+  return finish(
+      {true, final_fitness->fitness, final_fitness->cost, "", final_fitness->states_missed});
+}
+
+EpisodeResult RunFused(const EpisodeSpec& spec) {
+  bus::LcmBus bus("memq://");
+  sim::SimNodeOptions sim_options;
+  sim_options.arena = spec.arena;
+  sim::SimNode sim_node(&bus, sim_options);
+  evolver::FitnessNode fitness_node(&bus, spec.arena);
+  std::vector<std::unique_ptr<modules::ModuleNode>> nodes;
+  const int modules =
+      spec.config.kind == sim::ScenarioKind::kPendulum ? 2 : spec.config.num_modules;
+  for (int m = 0; m < modules; ++m) {
+    modules::ModuleNodeOptions o;
+    o.id = m;
+    o.arena = spec.arena;
+    nodes.push_back(std::make_unique<modules::ModuleNode>(&bus, o));
+  }
+  // One memq bus: any Handle() dispatches to every node; each node's Poll steps what it can.
+  auto pump = [&](std::chrono::microseconds wait) {
+    sim_node.Poll(std::chrono::microseconds(0));
+    for (auto& n : nodes) n->Poll(std::chrono::microseconds(0));
+    fitness_node.Poll(std::chrono::microseconds(0));
+    if (spec.realtime) bus.Handle(std::min(wait, std::chrono::microseconds(1000)));
+  };
+  return RunEpisode(bus, spec, pump, [](std::string*) { return true; });
+}
+
+}  // namespace ahhs::launch

@@ -1,0 +1,50 @@
+// The launcher's protocol role: one episode with a given genome on a bus where a sim, one module
+// per compartment and a fitness monitor listen (docs/protocol.md, "Episode"). Used by ahhs-launch
+// for separate processes and for the fused arena, where all nodes run here over memq://.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "bus/bus.h"
+#include "modules/core/genome.h"
+#include "sim/core/scenario.h"
+
+namespace ahhs::launch {
+
+struct EpisodeSpec {
+  sim::ScenarioConfig config;
+  modules::Genome genome;
+  std::int64_t seed = 1;
+  std::int64_t episode = 1;  // unique on the bus
+  bool realtime = false;
+  std::string arena = "AHHS";
+  std::chrono::seconds handshake_timeout{20};
+  std::chrono::seconds episode_timeout{3600};
+};
+
+struct EpisodeResult {
+  bool ok = false;
+  double fitness = 0;
+  double cost = 0;
+  std::string error;
+  int states_missed = 0;
+};
+
+// Checks the genome's sensor/actuator shape against the scenario; "" or a clear message.
+std::string CheckGenomeFits(const modules::Genome& genome, const sim::ScenarioConfig& config);
+
+// Runs the episode on `bus`. `pump(wait)` must dispatch the bus (and, for the fused arena, poll
+// every node); `alive()` is asked every loop and aborts the episode when it returns false (e.g.
+// a child process died or Ctrl-C); its message goes into the result.
+EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
+                         const std::function<void(std::chrono::microseconds)>& pump,
+                         const std::function<bool(std::string*)>& alive);
+
+// The fused arena: sim node, one module node per compartment and the fitness node in this
+// process over a fresh memq:// bus.
+EpisodeResult RunFused(const EpisodeSpec& spec);
+
+}  // namespace ahhs::launch

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "evolver/fitness/fitness_node.h"
 
@@ -30,8 +31,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
   try {
-    ahhs::bus::LcmBus bus(url);
-    ahhs::evolver::FitnessNode node(&bus, arena);
+    auto bus = ahhs::bus::MakeBus(url);
+    ahhs::evolver::FitnessNode node(bus.get(), arena);
     std::signal(SIGINT, OnSignal);
     std::signal(SIGTERM, OnSignal);
     const auto start = std::chrono::steady_clock::now();

@@ -26,6 +26,7 @@ bool FitnessMonitor::Add(const sim_state_t& s) {
       const double phi = std::atan2(s.px[0] - s.px[1], s.pz[1] - s.pz[0]);
       cost_ += std::fabs(phi);
       ticks_ = static_cast<std::int64_t>(tick);
+      ++ticks_with_state_;
     }
   } else {
     // Centroid of the module bodies, in message order (the sim lists them module by module).
@@ -60,7 +61,8 @@ double FitnessMonitor::cost() const {
 }
 
 double FitnessMonitor::fitness() const {
-  if (kind_ == sim::ScenarioKind::kPendulum) return sim::PendulumFitness(cost_, ticks_);
+  // Mean over the ticks whose state arrived: a lost state leaves the estimate unbiased.
+  if (kind_ == sim::ScenarioKind::kPendulum) return sim::PendulumFitness(cost_, ticks_with_state_);
   return sim::GaitFitness(cost(), sim::GaitConstants{});
 }
 

@@ -25,17 +25,24 @@ class FitnessMonitor {
   double cost() const;
   std::int64_t ticks_seen() const { return ticks_; }
   std::int64_t states_seen() const { return states_; }
+  // Whether the episode's last state has arrived (gait) / every tick's state (pendulum).
   bool complete() const {
     return kind_ == sim::ScenarioKind::kGait
                ? last_time_ >= static_cast<double>(total_ticks_) * period_ - 1e-9
-               : ticks_ >= total_ticks_;
+               : ticks_with_state_ >= total_ticks_;
+  }
+  // Ticks of the episode for which the state needed did not arrive.
+  std::int64_t ticks_missed() const {
+    if (kind_ == sim::ScenarioKind::kPendulum) return total_ticks_ - ticks_with_state_;
+    return complete() ? 0 : total_ticks_ - ticks_;
   }
 
  private:
   sim::ScenarioKind kind_;
   double period_;
   std::int64_t total_ticks_;
-  std::int64_t ticks_ = 0;
+  std::int64_t ticks_ = 0;             // last tick seen
+  std::int64_t ticks_with_state_ = 0;  // pendulum: tick-boundary states used
   std::int64_t states_ = 0;
   double cost_ = 0;
   bool have_start_ = false;

@@ -74,7 +74,8 @@ void FitnessNode::OnClock(const sim_clock_t& m) {
   } else {
     return;
   }
-  bus::PublishTyped(*bus_, channels_.Fitness(), *final_);
+  for (int k = 0; k < 3; ++k)
+    bus::PublishTyped(*bus_, channels_.Fitness(), *final_);  // see SimNode::Finish
 }
 
 fitness_t FitnessNode::Message(bool is_final, std::int8_t status, const std::string& text) const {
@@ -88,8 +89,7 @@ fitness_t FitnessNode::Message(bool is_final, std::int8_t status, const std::str
   f.is_final = is_final;
   f.status = status;
   f.states_seen = static_cast<std::int32_t>(monitor_->states_seen());
-  f.states_missed = static_cast<std::int32_t>(
-      is_final && !monitor_->complete() ? expected_ticks_ - monitor_->ticks_seen() : 0);
+  f.states_missed = static_cast<std::int32_t>(is_final ? monitor_->ticks_missed() : 0);
   f.message = text;
   return f;
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "modules/node/module_node.h"
 
@@ -27,8 +28,8 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   options.hormone_timeout = std::chrono::milliseconds(timeout_ms);
   try {
-    ahhs::bus::LcmBus bus(url);
-    ahhs::modules::ModuleNode node(&bus, options);
+    auto bus = ahhs::bus::MakeBus(url);
+    ahhs::modules::ModuleNode node(bus.get(), options);
     std::signal(SIGINT, OnSignal);
     std::signal(SIGTERM, OnSignal);
     while (!g_stop) node.Poll(std::chrono::milliseconds(100));

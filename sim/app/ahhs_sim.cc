@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "sim/core/drive.h"
 #include "sim/core/scenario.h"
@@ -22,8 +23,8 @@ void OnSignal(int) { g_stop = true; }
 
 int ServeBus(const std::string& url, const as::SimNodeOptions& options, int episodes,
              bool verbose) {
-  ahhs::bus::LcmBus bus(url);
-  as::SimNode node(&bus, options);
+  auto bus = ahhs::bus::MakeBus(url);
+  as::SimNode node(bus.get(), options);
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
   std::fprintf(stderr, "ahhs-sim: serving arena '%s' on %s\n", options.arena.c_str(), url.c_str());

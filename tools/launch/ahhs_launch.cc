@@ -14,6 +14,7 @@
 #include <iostream>
 #include <thread>
 
+#include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "modules/core/genome_json.h"
 #include "tools/launch/episode_runner.h"
@@ -107,6 +108,7 @@ int main(int argc, char** argv) {
   std::int64_t seed = 1;
   bool fused = false, realtime = false, verbose = false;
   int timeout_s = 3600;
+  int lockstep_timeout_ms = 2000;
   app.add_option("--scenario", scenario, "gait or pendulum")->capture_default_str();
   app.add_option("--genome", genome_file, "genome file (docs/genome.md)")
       ->required()
@@ -123,6 +125,10 @@ int main(int argc, char** argv) {
   app.add_option("--arena", arena, "arena name (default: unique per launch)");
   app.add_option("--timeout", timeout_s, "give up after this many seconds")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--lockstep-timeout-ms", lockstep_timeout_ms,
+                 "longest wait of the sim for a command and of a module for a neighbour's packet")
+      ->check(CLI::Range(1, 600000))
       ->capture_default_str();
   app.add_flag("-v,--verbose", verbose, "show the children's output");
   CLI11_PARSE(app, argc, argv);
@@ -162,7 +168,8 @@ int main(int argc, char** argv) {
     if (url.empty()) url = ahhs::bus::kDefaultLcmUrl;
     std::vector<Child> children;
     try {
-      ahhs::bus::LcmBus bus(url);
+      auto bus_ptr = ahhs::bus::MakeBus(url);
+      ahhs::bus::Bus& bus = *bus_ptr;
       const std::string dir = SelfDir();
       const bool quiet = !verbose;
       if (!log_file.empty()) {
@@ -213,9 +220,10 @@ int main(int argc, char** argv) {
     std::cerr << "ahhs-launch: episode failed: " << result.error << '\n';
     return g_interrupted ? 130 : 2;
   }
-  std::printf("scenario %s, seed %lld, %s arena%s\n", ahhs::sim::ScenarioName(spec.config.kind),
-              static_cast<long long>(seed), fused ? "fused" : "process",
-              realtime ? ", real time" : "");
+  std::printf(
+      "scenario %s, seed %lld, %s arena%s; ticks without a state at the fitness monitor: %d\n",
+      ahhs::sim::ScenarioName(spec.config.kind), static_cast<long long>(seed),
+      fused ? "fused" : "process", realtime ? ", real time" : "", result.states_missed);
   std::printf("fitness: %.17g\n", result.fitness);
   return 0;
 }

@@ -18,11 +18,13 @@ int main(int argc, char** argv) {
   CLI::App app{"ahhs-module: one module's AHHS controller on the bus (docs/protocol.md)"};
   ahhs::modules::ModuleNodeOptions options;
   std::string url = ahhs::bus::kDefaultLcmUrl;
-  int timeout_ms = 2000;
+  int timeout_ms = 500;
   app.add_option("--id", options.id, "module id (0-based)")->required()->check(CLI::Range(0, 9999));
   app.add_option("--lcm-url", url, "LCM URL")->capture_default_str();
   app.add_option("--arena", options.arena, "arena name: channel prefix")->capture_default_str();
-  app.add_option("--hormone-timeout-ms", timeout_ms, "longest wait for neighbours' hormone packets")
+  app.add_option("--hormone-timeout-ms", timeout_ms,
+                 "longest wait for neighbours' hormone packets (keep it well below the sim's "
+                 "lockstep timeout)")
       ->check(CLI::Range(1, 600000))
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);

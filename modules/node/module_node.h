@@ -27,7 +27,10 @@ namespace ahhs::modules {
 struct ModuleNodeOptions {
   int id = 0;
   std::string arena = bus::kDefaultArena;
-  std::chrono::milliseconds hormone_timeout{2000};  // wait for neighbours' packets of t-1
+  // Wait for the neighbours' packets of t-1. Must be well below the sim's lockstep timeout
+  // (default 2000 ms): a module that waits as long as the sim does answers too late after a
+  // lost packet, the sim moves on, and the module keeps chasing ticks it cannot complete.
+  std::chrono::milliseconds hormone_timeout{500};
   std::chrono::milliseconds heartbeat{1000};
 };
 

@@ -16,6 +16,7 @@ exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash -c '
     set -- $case
     pids=()
     "$bin/bin/ahhs-sim" --lcm-url "$url" --episodes 1 2>"$tmp/sim.err" & sim=$!
+    "$bin/bin/ahhs-fitness" --lcm-url "$url" --episodes 1 >/dev/null & pids+=($!)
     for ((m = 0; m < $2; m++)); do "$bin/bin/ahhs-module" --id $m --lcm-url "$url" 2>/dev/null & pids+=($!); done
     if ! timeout 120 "$bin/bin/arena_driver" --lcm-url "$url" --scenario $1 --modules $2 \
          --duration $3 --seed $4 --variant $5 >"$tmp/drv.out"; then
@@ -23,7 +24,7 @@ exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash -c '
     fi
     wait $sim
     kill "${pids[@]}"; wait "${pids[@]}" 2>/dev/null || true
-    want=$(cut -d" " -f2 "$tmp/drv.out")
+    want=$(grep "^fitness " "$tmp/drv.out" | cut -d" " -f2)
     echo "$case: in-process $want"; tail -1 "$tmp/sim.err"
     grep -q "fitness $want; missed 0, late 0, dropped 0" "$tmp/sim.err" || { echo "FAIL ($case)"; exit 1; }
   done

@@ -1,6 +1,7 @@
 // Two-process bus exchange for the multiprocess test (tests/bus/multiprocess_exchange.sh).
 //   bus_peer --role responder --lcm-url URL
 //   bus_peer --role initiator --lcm-url URL [--pings N] [--burst N]
+//   bus_peer --role spam --lcm-url URL --channels A,B,... --seconds S   (garbage, for fault tests)
 // The initiator waits for the responder's READY, does N typed ping-pongs (checking every
 // reply's content), then sends a burst of hinge commands as fast as it can and asks the
 // responder how many arrived. Exit 0 only when every reply was right and nothing was lost.
@@ -12,7 +13,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <set>
+#include <sstream>
 
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
@@ -154,6 +157,28 @@ int Initiator(ahhs::bus::Bus& bus, int pings, int burst) {
   return (summary.tick == burst && summary.dropped_messages == 0) ? 0 : 1;
 }
 
+// Publishes random bytes on each channel (comma-separated) about every millisecond.
+int Spammer(ahhs::bus::Bus& bus, const std::string& channels, double seconds) {
+  std::vector<std::string> list;
+  std::string item;
+  std::stringstream in(channels);
+  while (std::getline(in, item, ',')) list.push_back(item);
+  std::mt19937_64 rng(12345);
+  const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+  long sent = 0;
+  while (Clock::now() < end) {
+    for (const auto& ch : list) {
+      std::vector<std::uint8_t> junk(8 + rng() % 200);
+      for (auto& b : junk) b = static_cast<std::uint8_t>(rng());
+      bus.Publish(ch, junk.data(), junk.size());
+      ++sent;
+    }
+    bus.Handle(1ms);
+  }
+  std::printf("spammer: %ld garbage messages\n", sent);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -164,13 +189,18 @@ int main(int argc, char** argv) {
   int burst = 2000;
   app.add_option("--role", role, "responder or initiator")
       ->required()
-      ->check(CLI::IsMember({"responder", "initiator"}));
+      ->check(CLI::IsMember({"responder", "initiator", "spam"}));
+  std::string channels;
+  double seconds = 1;
+  app.add_option("--channels", channels, "spam: comma-separated channels");
+  app.add_option("--seconds", seconds, "spam: how long");
   app.add_option("--lcm-url", url, "LCM URL")->required();
   app.add_option("--pings", pings, "ping-pong round trips")->check(CLI::NonNegativeNumber);
   app.add_option("--burst", burst, "messages in the burst")->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
   try {
     ahhs::bus::LcmBus bus(url);
+    if (role == "spam") return Spammer(bus, channels, seconds);
     return role == "responder" ? Responder(bus, burst) : Initiator(bus, pings, burst);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bus_peer: %s\n", e.what());

@@ -127,7 +127,8 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--lockstep-timeout-ms", lockstep_timeout_ms,
-                 "longest wait of the sim for a command and of a module for a neighbour's packet")
+                 "longest wait of the sim for a module's command (modules wait a quarter of it for "
+                 "their neighbours' packets, so that after a loss they still answer in time)")
       ->check(CLI::Range(1, 600000))
       ->capture_default_str();
   app.add_flag("-v,--verbose", verbose, "show the children's output");
@@ -168,8 +169,6 @@ int main(int argc, char** argv) {
     if (url.empty()) url = ahhs::bus::kDefaultLcmUrl;
     std::vector<Child> children;
     try {
-      auto bus_ptr = ahhs::bus::MakeBus(url);
-      ahhs::bus::Bus& bus = *bus_ptr;
       const std::string dir = SelfDir();
       const bool quiet = !verbose;
       if (!log_file.empty()) {
@@ -183,17 +182,30 @@ int main(int argc, char** argv) {
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
       }
-      children.push_back({"ahhs-sim", Spawn({dir + "/ahhs-sim", "--lcm-url", url, "--arena",
-                                             spec.arena, "--episodes", "1"},
-                                            quiet)});
+      std::vector<std::string> sim_args{dir + "/ahhs-sim",
+                                        "--lcm-url",
+                                        url,
+                                        "--arena",
+                                        spec.arena,
+                                        "--episodes",
+                                        "1",
+                                        "--lockstep-timeout-ms",
+                                        std::to_string(lockstep_timeout_ms)};
+      if (verbose) sim_args.push_back("--verbose");
+      children.push_back({"ahhs-sim", Spawn(sim_args, quiet)});
       children.push_back({"ahhs-fitness", Spawn({dir + "/ahhs-fitness", "--lcm-url", url, "--arena",
                                                  spec.arena, "--episodes", "1"},
                                                 quiet)});
       for (int m = 0; m < spec.config.num_modules; ++m)
         children.push_back({"ahhs-module " + std::to_string(m),
                             Spawn({dir + "/ahhs-module", "--id", std::to_string(m), "--lcm-url",
-                                   url, "--arena", spec.arena},
+                                   url, "--arena", spec.arena, "--hormone-timeout-ms",
+                                   std::to_string(std::max(1, lockstep_timeout_ms / 4))},
                                   quiet)});
+      // The launcher's own bus is opened after the children are forked, so that no child
+      // inherits its sockets.
+      auto bus_ptr = ahhs::bus::MakeBus(url);
+      ahhs::bus::Bus& bus = *bus_ptr;
       auto alive = [&](std::string* why) {
         if (g_interrupted) {
           *why = "interrupted";

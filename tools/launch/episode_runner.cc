@@ -87,10 +87,16 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
   const genome_t genome = modules::GenomeMessage(spec.genome, ep);
 
   // Handshake: RESET + GENOME, repeated until the sim, every module and the monitor answered.
-  const auto handshake_end = Clock::now() + spec.handshake_timeout;
+  const auto handshake_start = Clock::now();
+  const auto handshake_end = handshake_start + spec.handshake_timeout;
   auto next_send = Clock::now();
   std::string why;
-  while (!(sim_ready && monitor_ready && static_cast<int>(ready.size()) == modules)) {
+  auto modules_ok = [&] {
+    if (static_cast<int>(ready.size()) == modules) return true;
+    return spec.realtime && !ready.empty() &&
+           Clock::now() > handshake_start + spec.realtime_join_wait;
+  };
+  while (!(sim_ready && monitor_ready && modules_ok())) {
     if (!alive(&why)) return finish({false, 0, 0, why, 0});
     if (!result.error.empty()) return finish(result);
     if (Clock::now() > handshake_end) {
@@ -113,13 +119,19 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
     pump(std::chrono::milliseconds(5));
   }
 
+  // START, repeated until the sim's clock shows the episode running (a lost START must not
+  // leave everyone waiting; the sim ignores repeats).
   c.command = sim_control_t::START;
-  c.utime = bus::NowUtime();
-  bus::PublishTyped(bus, ch.SimControl(), c);
   const auto episode_end = Clock::now() + spec.episode_timeout;
   auto next_genome = Clock::now() + std::chrono::seconds(1);
+  auto next_start = Clock::now();
   while (!final_fitness) {
     if (!alive(&why)) return finish({false, 0, 0, why, 0});
+    if (run_state == sim_clock_t::RESET && Clock::now() >= next_start) {
+      c.utime = bus::NowUtime();
+      bus::PublishTyped(bus, ch.SimControl(), c);
+      next_start = Clock::now() + std::chrono::milliseconds(100);
+    }
     if (Clock::now() > episode_end)
       return finish({false, 0, 0, "the episode did not end in time", 0});
     if (spec.realtime && Clock::now() >= next_genome) {  // lets a module that starts late join

@@ -22,6 +22,9 @@ struct EpisodeSpec {
   bool realtime = false;
   std::string arena = "AHHS";
   std::chrono::seconds handshake_timeout{20};
+  // Real time only: start without the modules that have not answered after this long (a
+  // physical module may come later and join the running episode).
+  std::chrono::milliseconds realtime_join_wait{1500};
   std::chrono::seconds episode_timeout{3600};
 };
 

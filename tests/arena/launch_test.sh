@@ -1,0 +1,96 @@
+#!/usr/bin/env bash
+# ahhs-launch end to end, inside a private network namespace:
+#  1. fused and process arenas give bit-identical fitness (pendulum, gait; AHHS1, AHHS2; seeds);
+#  2. a genome of the wrong shape is refused;
+#  3. --log records every tick of every module; replaying the log into a fresh ahhs-fitness
+#     gives the live fitness;
+#  4. a module killed mid-episode ends the episode with a clear error within seconds, no orphans;
+#  5. 5 % of messages dropped: the episode completes and reports what was lost;
+#  6. garbage on every channel: counted, ignored, fitness unchanged;
+#  7. real time: a module started late joins the running episode.
+set -uo pipefail
+bin=${1:?usage: launch_test.sh BIN_DIR}
+# Re-run inside a private network namespace (ahhs-netns exits 77, "skipped", where it cannot).
+[[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$0" "$@"
+url="udpm://239.255.42.50:7741?ttl=0&recv_buf_size=4194304"
+tmp=$(mktemp -d)
+trap 'pkill -f "$bin/ahhs-" 2>/dev/null; rm -rf "$tmp"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+fit() { tail -1 "$1" | sed -n 's/^fitness: //p'; }
+G="$bin/ahhs-genome"
+$G random --variant ahhs2 --hormones 15 --rules 15 --sensors 10 --actuators 2 --seed 1 >$tmp/p2.json
+$G random --variant ahhs1 --hormones 15 --rules 60 --sensors 10 --actuators 2 --seed 2 >$tmp/p1.json
+$G random --variant ahhs2 --hormones 5 --rules 30 --sensors 4 --actuators 1 --seed 3 >$tmp/g2.json
+$G random --variant ahhs1 --hormones 5 --rules 80 --sensors 4 --actuators 1 --seed 4 >$tmp/g1.json
+
+echo "== 1. fused == processes"
+for c in "pendulum p2 1 30" "pendulum p1 2 30" "gait g2 3 10" "gait g1 4 10" "gait g2 5 10 --joints fixed"; do
+  set -- $c
+  "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --fused >$tmp/f.out || fail "fused $c"
+  "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --lcm-url "$url" >$tmp/p.out 2>$tmp/p.err || { cat $tmp/p.err; fail "processes $c"; }
+  echo "$c: fused $(fit $tmp/f.out) processes $(fit $tmp/p.out)"
+  [[ -n "$(fit $tmp/f.out)" && "$(fit $tmp/f.out)" == "$(fit $tmp/p.out)" ]] || fail "fused and process fitness differ ($c)"
+done
+
+echo "== 2. wrong genome shape"
+if "$bin/ahhs-launch" --scenario gait --genome $tmp/p2.json --fused 2>$tmp/err; then fail "shape accepted"; fi
+grep -q "gives each module 4 sensors and 1 actuators" $tmp/err || fail "shape message: $(cat $tmp/err)"
+
+echo "== 3. log and replay"
+"$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --seed 7 --duration 10 --arena LOGGED --lcm-url "$url" --log $tmp/ep.log >$tmp/live.out 2>/dev/null || fail "logged run"
+"$bin/log_check" $tmp/ep.log --arena LOGGED --modules 2 --ticks 200 || fail "log incomplete"
+"$bin/ahhs-fitness" --lcm-url "$url" --arena LOGGED --episodes 1 --timeout 60 >$tmp/replay.out & fp=$!
+sleep 0.3
+lcm-logplayer --lcm-url="$url" $tmp/ep.log
+wait $fp || fail "replay fitness monitor"
+echo "live $(fit $tmp/live.out) replayed $(fit $tmp/replay.out)"
+[[ "$(fit $tmp/live.out)" == "$(fit $tmp/replay.out)" ]] || fail "replayed fitness differs"
+
+echo "== 4. a module killed mid-episode"
+start=$(date +%s)
+"$bin/ahhs-launch" --scenario gait --genome $tmp/g2.json --duration 600 --arena KILL --lcm-url "$url" >/dev/null 2>$tmp/kill.err & lp=$!
+for i in $(seq 50); do pgrep -f "ahhs-module --id 2 .*KILL" >/dev/null && break; sleep 0.1; done
+sleep 1
+pkill -9 -f "ahhs-module --id 2 .*KILL" || fail "no module to kill"
+wait $lp && fail "launcher succeeded after a module was killed"
+elapsed=$(( $(date +%s) - start ))
+grep -q "ahhs-module 2 ended during the episode (killed by signal 9)" $tmp/kill.err || fail "kill message: $(cat $tmp/kill.err)"
+(( elapsed < 15 )) || fail "took ${elapsed}s"
+sleep 0.5
+pgrep -f "arena KILL" && fail "orphan processes left"
+echo "ended with: $(grep "episode failed" $tmp/kill.err) after ${elapsed}s; no orphans"
+
+echo "== 5. 5 % of messages dropped (fault injection of the bus, in every process)"
+AHHS_FAULT_DROP=0.05 AHHS_FAULT_SEED=3 "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 30 \
+  --lockstep-timeout-ms 20 --lcm-url "$url" >$tmp/drop.out 2>$tmp/drop.err || { cat $tmp/drop.err; fail "lossy run"; }
+cat $tmp/drop.out; grep -E "^ahhs-(sim|module)" $tmp/drop.err
+grep -q "finished after 600 ticks" $tmp/drop.err || fail "lossy episode did not run to the end"
+grep "finished after" $tmp/drop.err | grep -vq "missed 0, late 0" || fail "losses not reported"
+grep -q "^fitness: " $tmp/drop.out || fail "no fitness"
+
+echo "== 6. garbage on every channel"
+chans="GARB/SIM/CONTROL,GARB/SIM/STATE,GARB/SIM/CLOCK,GARB/TOPOLOGY,GARB/GENOME,GARB/FITNESS"
+for m in 0 1 2 3 4; do chans="$chans,GARB/MODULE$m/SENSORS,GARB/MODULE$m/HINGE,GARB/MODULE$m/HORMONE,GARB/MODULE$m/STATUS"; done
+"$bin/bus_peer" --role spam --lcm-url "$url" --channels "$chans" --seconds 8 >$tmp/spam.out & sp=$!
+"$bin/ahhs-launch" --scenario gait --genome $tmp/g2.json --seed 3 --duration 10 --arena GARB --lcm-url "$url" >$tmp/garb.out 2>$tmp/garb.err || { cat $tmp/garb.err; fail "run under garbage"; }
+wait $sp
+"$bin/ahhs-launch" --scenario gait --genome $tmp/g2.json --seed 3 --duration 10 --fused >$tmp/clean.out
+echo "under garbage $(fit $tmp/garb.out), clean $(fit $tmp/clean.out); $(cat $tmp/spam.out)"
+[[ "$(fit $tmp/garb.out)" == "$(fit $tmp/clean.out)" ]] || fail "garbage changed the fitness"
+grep "ahhs-sim: episode" $tmp/garb.err | grep -q "dropped [1-9]" || fail "garbage not counted by the sim"
+
+echo "== 7. real time, a module joins late"
+"$bin/ahhs-sim" --lcm-url "$url" --arena RT --episodes 1 2>$tmp/rt-sim.err & s=$!
+"$bin/ahhs-fitness" --lcm-url "$url" --arena RT --episodes 1 >$tmp/rt-fit.out & f=$!
+"$bin/ahhs-module" --id 0 --lcm-url "$url" --arena RT 2>$tmp/rt-m0.err & m0=$!
+"$bin/arena_driver" --lcm-url "$url" --scenario pendulum --duration 5 --seed 1 --realtime --arena RT >$tmp/rt.out 2>&1 & d=$!
+sleep 3
+"$bin/ahhs-module" --id 1 --lcm-url "$url" --arena RT 2>$tmp/rt-m1.err & m1=$!
+wait $d || { cat $tmp/rt.out; fail "real-time episode"; }
+wait $s $f
+kill $m0 $m1; wait $m0 $m1 2>/dev/null
+cat $tmp/rt.out $tmp/rt-m0.err $tmp/rt-m1.err
+ticks1=$(sed -n 's/^ahhs-module 1: \([0-9]*\) ticks.*/\1/p' $tmp/rt-m1.err)
+ticks0=$(sed -n 's/^ahhs-module 0: \([0-9]*\) ticks.*/\1/p' $tmp/rt-m0.err)
+(( ticks1 > 10 && ticks1 < ticks0 )) || fail "the late module did not join (module 0: $ticks0 ticks, module 1: $ticks1)"
+echo "all ahhs-launch checks passed"

@@ -1,0 +1,65 @@
+// Reads an episode log written by `ahhs-launch --log` (lcm::LogFile) and checks that every tick
+// of every module's SENSORS, HINGE and HORMONE packets is in it.
+//   log_check LOG --arena A --modules N --ticks T
+#include <CLI/CLI.hpp>
+#include <ahhs/hinge_command_t.hpp>
+#include <ahhs/hormone_packet_t.hpp>
+#include <ahhs/module_sensors_t.hpp>
+#include <cstdio>
+#include <lcm/lcm-cpp.hpp>
+#include <set>
+
+#include "bus/channels.h"
+#include "bus/codec.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"check an episode log"};
+  std::string path, arena;
+  int modules = 0;
+  long ticks = 0;
+  app.add_option("LOG", path)->required();
+  app.add_option("--arena", arena)->required();
+  app.add_option("--modules", modules)->required();
+  app.add_option("--ticks", ticks)->required();
+  CLI11_PARSE(app, argc, argv);
+
+  lcm::LogFile log(path, "r");
+  if (!log.good()) {
+    std::fprintf(stderr, "log_check: cannot read %s\n", path.c_str());
+    return 1;
+  }
+  const ahhs::bus::ArenaChannels ch(arena);
+  std::set<std::pair<int, long>> sensors, hinges, hormones;
+  long events = 0;
+  for (const lcm::LogEvent* e = log.readNextEvent(); e != nullptr; e = log.readNextEvent()) {
+    ++events;
+    for (int m = 0; m < modules; ++m) {
+      if (e->channel == ch.Sensors(m)) {
+        ahhs::module_sensors_t s;
+        if (ahhs::bus::Decode(e->data, static_cast<std::size_t>(e->datalen), &s))
+          sensors.insert({m, s.tick});
+      } else if (e->channel == ch.Hinge(m)) {
+        ahhs::hinge_command_t h;
+        if (ahhs::bus::Decode(e->data, static_cast<std::size_t>(e->datalen), &h))
+          hinges.insert({m, h.tick});
+      } else if (e->channel == ch.Hormone(m)) {
+        ahhs::hormone_packet_t p;
+        if (ahhs::bus::Decode(e->data, static_cast<std::size_t>(e->datalen), &p))
+          hormones.insert({m, p.tick});
+      }
+    }
+  }
+  int bad = 0;
+  for (int m = 0; m < modules; ++m) {
+    for (long t = 0; t < ticks; ++t) {
+      if (!sensors.count({m, t}) || !hinges.count({m, t}) || !hormones.count({m, t})) {
+        if (bad++ < 5) std::fprintf(stderr, "log_check: module %d tick %ld incomplete\n", m, t);
+      }
+    }
+  }
+  std::printf(
+      "log_check: %ld events; %zu sensors, %zu hinge, %zu hormone (module, tick) pairs; %d "
+      "incomplete\n",
+      events, sensors.size(), hinges.size(), hormones.size(), bad);
+  return bad == 0 ? 0 : 1;
+}

@@ -30,4 +30,9 @@ function(ahhs_add_script_test)
   set_tests_properties(${ARG_NAME} PROPERTIES
     LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT} SKIP_RETURN_CODE ${AHHS_SKIP_RETURN_CODE}
     ENVIRONMENT "AHHS_SOURCE_DIR=${PROJECT_SOURCE_DIR};AHHS_BINARY_DIR=${PROJECT_BINARY_DIR}")
+  # Real processes over real sockets run alone: on a loaded 2-core machine an unpaced lockstep
+  # episode outruns lcm-logger and the kernel's socket buffers.
+  if("multiprocess" IN_LIST ARG_LABELS OR "lan" IN_LIST ARG_LABELS)
+    set_tests_properties(${ARG_NAME} PROPERTIES RUN_SERIAL TRUE)
+  endif()
 endfunction()

@@ -1,17 +1,24 @@
 // ahhs-bench: speed figures for docs/performance.md. Benchmarks, not tests: they print
 // numbers and never fail on them.
 //   ahhs-bench controller [--ticks N] [--repeats R] [--seed S]
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <vector>
 
+#include "modules/core/genome_json.h"
 #include "modules/core/hormone_system.h"
+#include "modules/core/organism.h"
 #include "modules/core/variation.h"
 #include "sim/core/drive.h"
 #include "sim/core/scenario.h"
+#include "tools/launch/episode_runner.h"
 
 namespace am = ahhs::modules;
 using Clock = std::chrono::steady_clock;
@@ -98,6 +105,108 @@ void BenchSim(const ahhs::sim::ScenarioConfig& config, const char* drive_name, i
       1e3 * walls.back(), sim->sim_time() / median, fitness);
 }
 
+// Physics and controllers in one loop, no bus: the floor the arenas are compared with.
+double DirectEpisode(const ahhs::sim::ScenarioConfig& config, const am::Genome& genome,
+                     std::uint64_t seed) {
+  namespace as = ahhs::sim;
+  auto scenario = as::MakeScenario(config);
+  scenario->Reset(seed);
+  const int n = scenario->num_compartments();
+  std::vector<std::vector<int>> links(static_cast<std::size_t>(n));
+  for (auto [a, b] : scenario->Docking()) {
+    links[static_cast<std::size_t>(a)].push_back(b);
+    links[static_cast<std::size_t>(b)].push_back(a);
+  }
+  const am::Controller controller(genome);
+  am::Organism organism(controller, links);
+  std::vector<std::vector<double>> sensors(
+      static_cast<std::size_t>(n),
+      std::vector<double>(static_cast<std::size_t>(scenario->num_sensors())));
+  std::vector<am::TickInput> inputs(static_cast<std::size_t>(n));
+  while (true) {
+    for (int c = 0; c < n; ++c) {
+      scenario->ReadSensors(c, sensors[static_cast<std::size_t>(c)].data());
+      inputs[static_cast<std::size_t>(c)].sensors = sensors[static_cast<std::size_t>(c)].data();
+    }
+    organism.Step(inputs);
+    for (int c = 0; c < n; ++c) scenario->SetActuators(c, organism.state(c).actuators.data());
+    if (scenario->Step() != as::StepStatus::kRunning) break;
+  }
+  return scenario->Fitness();
+}
+
+std::string SelfDir() {
+  char buf[4096];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) return ".";
+  std::string path(buf, static_cast<std::size_t>(n));
+  return path.substr(0, path.rfind('/'));
+}
+
+void BenchArena(const std::string& url, std::uint64_t seed) {
+  namespace as = ahhs::sim;
+  as::ScenarioConfig config;  // gait, 5 modules, damped, 60 s at 20 Hz
+  am::Rng rng(seed);
+  const am::Genome genome = am::RandomGenome({am::Variant::kAhhs2, 5, 30, 4, 1}, rng);
+  auto time_it = [](auto&& f) {
+    const auto t0 = Clock::now();
+    const double fitness = f();
+    return std::make_pair(std::chrono::duration<double>(Clock::now() - t0).count(), fitness);
+  };
+  const auto physics = time_it([&] {
+    auto sim = as::MakeScenario(config);
+    sim->Reset(seed);
+    double a[1];
+    while (true) {
+      for (int c = 0; c < sim->num_compartments(); ++c) {
+        as::DriveCommand(as::DriveKind::kWave, *sim, c, a);
+        sim->SetActuators(c, a);
+      }
+      if (sim->Step() != as::StepStatus::kRunning) break;
+    }
+    return sim->Fitness();
+  });
+  const auto direct = time_it([&] { return DirectEpisode(config, genome, seed); });
+  ahhs::launch::EpisodeSpec spec;
+  spec.config = config;
+  spec.genome = genome;
+  spec.seed = static_cast<std::int64_t>(seed);
+  const auto fused = time_it([&] { return ahhs::launch::RunFused(spec).fitness; });
+  // Multi-process: ahhs-launch with the sim, 5 modules and the fitness monitor as processes.
+  char path[] = "/tmp/ahhs-bench-genome-XXXXXX";
+  const int fd = mkstemp(path);
+  if (fd >= 0) close(fd);
+  am::SaveGenomeFile(path, genome);
+  const std::string out = std::string(path) + ".out";
+  const std::string cmd = SelfDir() + "/ahhs-launch --scenario gait --genome " + path + " --seed " +
+                          std::to_string(seed) + " --lcm-url '" + url + "' > " + out +
+                          " 2>/dev/null";
+  const auto processes = time_it([&] {
+    if (std::system(cmd.c_str()) != 0) return std::nan("");
+    std::ifstream in(out);
+    std::string line, last;
+    while (std::getline(in, line)) last = line;
+    return last.rfind("fitness: ", 0) == 0 ? std::stod(last.substr(9)) : std::nan("");
+  });
+  std::remove(path);
+  std::remove(out.c_str());
+  std::printf("gait, 5 modules, damped, 60 s at 20 Hz, AHHS2 5 hormones x 30 rules, seed %llu\n",
+              static_cast<unsigned long long>(seed));
+  std::printf("  physics only (wave drive)      %7.3f s\n", physics.first);
+  std::printf("  physics + controllers, no bus  %7.3f s   fitness %.17g\n", direct.first,
+              direct.second);
+  std::printf(
+      "  fused arena (memq)             %7.3f s   fitness %.17g   %.2fx physics+controllers\n",
+      fused.first, fused.second, fused.first / direct.first);
+  std::printf(
+      "  multi-process arena (udpm)     %7.3f s   fitness %.17g   %.2fx fused (process start "
+      "included)\n",
+      processes.first, processes.second, processes.first / fused.first);
+  if (std::isnan(processes.second))
+    std::printf(
+        "  (the multi-process run failed: run under tools/ahhs-netns, or give --lcm-url)\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -122,8 +231,15 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   sim->add_option("--seed", seed, "episode seed")->capture_default_str();
+  auto* arena =
+      app.add_subcommand("arena", "one gait episode: physics only, fused and multi-process arenas");
+  std::string arena_url = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+  arena->add_option("--lcm-url", arena_url, "URL for the multi-process arena")
+      ->capture_default_str();
+  arena->add_option("--seed", seed, "genome and episode seed")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
+  if (arena->parsed()) BenchArena(arena_url, seed);
   if (sim->parsed()) {
     namespace as = ahhs::sim;
     std::printf("physics-only episodes, median of %d, seed %llu\n", sim_repeats,

@@ -80,7 +80,8 @@ void StopAll(std::vector<Child>& children, int signal = SIGTERM) {
   }
 }
 
-// False (with a message) when a child has ended before the episode did.
+// False (with a message) when a child has ended before the episode did. The children serve
+// until stopped, so any exit during the episode is a failure.
 bool ChildrenAlive(std::vector<Child>& children, std::string* why) {
   for (auto& c : children) {
     if (c.pid <= 0) continue;
@@ -187,15 +188,13 @@ int main(int argc, char** argv) {
                                         url,
                                         "--arena",
                                         spec.arena,
-                                        "--episodes",
-                                        "1",
                                         "--lockstep-timeout-ms",
                                         std::to_string(lockstep_timeout_ms)};
       if (verbose) sim_args.push_back("--verbose");
       children.push_back({"ahhs-sim", Spawn(sim_args, quiet)});
-      children.push_back({"ahhs-fitness", Spawn({dir + "/ahhs-fitness", "--lcm-url", url, "--arena",
-                                                 spec.arena, "--episodes", "1"},
-                                                quiet)});
+      children.push_back(
+          {"ahhs-fitness",
+           Spawn({dir + "/ahhs-fitness", "--lcm-url", url, "--arena", spec.arena}, quiet)});
       for (int m = 0; m < spec.config.num_modules; ++m)
         children.push_back({"ahhs-module " + std::to_string(m),
                             Spawn({dir + "/ahhs-module", "--id", std::to_string(m), "--lcm-url",

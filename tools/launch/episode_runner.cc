@@ -114,7 +114,7 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
       auto g = genome;
       g.utime = bus::NowUtime();
       bus::PublishTyped(bus, ch.Genome(), g);
-      next_send = Clock::now() + std::chrono::milliseconds(200);
+      next_send = Clock::now() + std::chrono::milliseconds(50);
     }
     pump(std::chrono::milliseconds(5));
   }

@@ -66,12 +66,17 @@ int main(int argc, char** argv) {
   as::SimNodeOptions node_options;
   int timeout_ms = 2000;
   int episodes = 0;
+  int min_tick_us = 0;
   app.add_option("--lcm-url", url, "LCM URL (bus mode)")->capture_default_str();
   app.add_option("--arena", node_options.arena, "arena name: channel prefix (bus mode)")
       ->capture_default_str();
   app.add_option("--lockstep-timeout-ms", timeout_ms,
                  "bus mode: longest wait for a module's command")
       ->check(CLI::Range(1, 600000))
+      ->capture_default_str();
+  app.add_option("--min-tick-us", min_tick_us,
+                 "bus mode, lockstep: at least this many microseconds of wall time per tick")
+      ->check(CLI::Range(0, 10000000))
       ->capture_default_str();
   app.add_option("--episodes", episodes,
                  "bus mode: exit after this many episodes (0 = serve until killed)")
@@ -94,6 +99,7 @@ int main(int argc, char** argv) {
   if (drive_opt->count() == 0) {
     try {
       node_options.lockstep_timeout = std::chrono::milliseconds(timeout_ms);
+      node_options.min_tick_period = std::chrono::microseconds(min_tick_us);
       return ServeBus(url, node_options, episodes, verbose);
     } catch (const std::exception& e) {
       std::cerr << "ahhs-sim: " << e.what() << '\n';

@@ -161,6 +161,7 @@ void SimNode::OnHinge(const std::string& channel, const hinge_command_t& m) {
 bool SimNode::ReadyToAdvance(Clock::time_point now) const {
   if (phase_ != Phase::kRunning) return false;
   if (realtime_) return now >= tick_deadline_;
+  if (now < tick_start_ + options_.min_tick_period) return false;
   return commands_this_tick_ == scenario_->num_compartments() || now >= tick_deadline_;
 }
 
@@ -211,6 +212,7 @@ void SimNode::Advance() {
 
 void SimNode::PublishTickStart() {
   const auto now = Clock::now();
+  tick_start_ = now;
   if (realtime_) {
     const auto period = std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(scenario_->control_period()));

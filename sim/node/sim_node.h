@@ -24,6 +24,9 @@ struct SimNodeOptions {
   // last command of the missing ones (counted in stats().missed_commands).
   std::chrono::milliseconds lockstep_timeout{2000};
   double state_rate = 40.0;  // SIM/STATE messages per simulated second (>= 30)
+  // Lockstep: at least this much wall time per tick (0 = as fast as the modules answer). Gives a
+  // passive listener such as lcm-logger time to keep up; results do not depend on it.
+  std::chrono::microseconds min_tick_period{0};
 };
 
 struct SimNodeStats {
@@ -92,6 +95,7 @@ class SimNode {
   std::vector<std::int64_t> command_tick_;
   int commands_this_tick_ = 0;
   Clock::time_point tick_deadline_;  // lockstep timeout / real-time tick end
+  Clock::time_point tick_start_;     // when the current tick's SENSORS went out
   double next_state_time_ = 0;
   std::vector<BodyState> bodies_;  // scratch
 };

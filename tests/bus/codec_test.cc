@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <random>
 
-#include "tests/lcmtypes/fixtures.h"
+#include "tests/fixtures/messages.h"
 
 using ahhs::bus::Decode;
 using ahhs::bus::Encode;

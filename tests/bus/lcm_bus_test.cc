@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "bus/typed.h"
-#include "tests/lcmtypes/fixtures.h"
+#include "tests/fixtures/messages.h"
 
 using namespace std::chrono_literals;
 using ahhs::bus::LcmBus;

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "bus/codec.h"
-#include "tests/lcmtypes/fixtures.h"
+#include "tests/fixtures/messages.h"
 
 namespace {
 

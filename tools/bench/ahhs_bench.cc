@@ -14,7 +14,6 @@
 
 #include "modules/core/genome_json.h"
 #include "modules/core/hormone_system.h"
-#include "modules/core/organism.h"
 #include "modules/core/variation.h"
 #include "sim/core/drive.h"
 #include "sim/core/scenario.h"
@@ -105,44 +104,6 @@ void BenchSim(const ahhs::sim::ScenarioConfig& config, const char* drive_name, i
       1e3 * walls.back(), sim->sim_time() / median, fitness);
 }
 
-// Physics and controllers in one loop, no bus: the floor the arenas are compared with.
-double DirectEpisode(const ahhs::sim::ScenarioConfig& config, const am::Genome& genome,
-                     std::uint64_t seed) {
-  namespace as = ahhs::sim;
-  auto scenario = as::MakeScenario(config);
-  scenario->Reset(seed);
-  const int n = scenario->num_compartments();
-  std::vector<std::vector<int>> links(static_cast<std::size_t>(n));
-  for (auto [a, b] : scenario->Docking()) {
-    links[static_cast<std::size_t>(a)].push_back(b);
-    links[static_cast<std::size_t>(b)].push_back(a);
-  }
-  const am::Controller controller(genome);
-  am::Organism organism(controller, links);
-  std::vector<std::vector<double>> sensors(
-      static_cast<std::size_t>(n),
-      std::vector<double>(static_cast<std::size_t>(scenario->num_sensors())));
-  std::vector<am::TickInput> inputs(static_cast<std::size_t>(n));
-  while (true) {
-    for (int c = 0; c < n; ++c) {
-      scenario->ReadSensors(c, sensors[static_cast<std::size_t>(c)].data());
-      inputs[static_cast<std::size_t>(c)].sensors = sensors[static_cast<std::size_t>(c)].data();
-    }
-    organism.Step(inputs);
-    for (int c = 0; c < n; ++c) scenario->SetActuators(c, organism.state(c).actuators.data());
-    if (scenario->Step() != as::StepStatus::kRunning) break;
-  }
-  return scenario->Fitness();
-}
-
-std::string SelfDir() {
-  char buf[4096];
-  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
-  if (n <= 0) return ".";
-  std::string path(buf, static_cast<std::size_t>(n));
-  return path.substr(0, path.rfind('/'));
-}
-
 void BenchArena(const std::string& url, std::uint64_t seed) {
   namespace as = ahhs::sim;
   as::ScenarioConfig config;  // gait, 5 modules, damped, 60 s at 20 Hz
@@ -166,11 +127,11 @@ void BenchArena(const std::string& url, std::uint64_t seed) {
     }
     return sim->Fitness();
   });
-  const auto direct = time_it([&] { return DirectEpisode(config, genome, seed); });
   ahhs::launch::EpisodeSpec spec;
   spec.config = config;
   spec.genome = genome;
   spec.seed = static_cast<std::int64_t>(seed);
+  const auto direct = time_it([&] { return ahhs::launch::RunDirect(spec); });
   const auto fused = time_it([&] { return ahhs::launch::RunFused(spec).fitness; });
   // Multi-process: ahhs-launch with the sim, 5 modules and the fitness monitor as processes.
   char path[] = "/tmp/ahhs-bench-genome-XXXXXX";
@@ -178,9 +139,9 @@ void BenchArena(const std::string& url, std::uint64_t seed) {
   if (fd >= 0) close(fd);
   am::SaveGenomeFile(path, genome);
   const std::string out = std::string(path) + ".out";
-  const std::string cmd = SelfDir() + "/ahhs-launch --scenario gait --genome " + path + " --seed " +
-                          std::to_string(seed) + " --lcm-url '" + url + "' > " + out +
-                          " 2>/dev/null";
+  const std::string cmd = ahhs::launch::ExecutableDir() + "/ahhs-launch --scenario gait --genome " +
+                          path + " --seed " + std::to_string(seed) + " --lcm-url '" + url + "' > " +
+                          out + " 2>/dev/null";
   const auto processes = time_it([&] {
     if (std::system(cmd.c_str()) != 0) return std::nan("");
     std::ifstream in(out);

@@ -31,14 +31,6 @@ struct Child {
   pid_t pid = -1;
 };
 
-std::string SelfDir() {
-  char buf[4096];
-  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
-  if (n <= 0) return ".";
-  std::string path(buf, static_cast<std::size_t>(n));
-  return path.substr(0, path.rfind('/'));
-}
-
 pid_t Spawn(const std::vector<std::string>& argv, bool quiet) {
   const pid_t parent = getpid();
   const pid_t pid = fork();
@@ -170,7 +162,7 @@ int main(int argc, char** argv) {
     if (url.empty()) url = ahhs::bus::kDefaultLcmUrl;
     std::vector<Child> children;
     try {
-      const std::string dir = SelfDir();
+      const std::string dir = al::ExecutableDir();
       const bool quiet = !verbose;
       if (!log_file.empty()) {
         children.push_back({"lcm-logger", Spawn({"/usr/bin/lcm-logger", "--lcm-url=" + url,
@@ -191,6 +183,8 @@ int main(int argc, char** argv) {
                                         "--lockstep-timeout-ms",
                                         std::to_string(lockstep_timeout_ms)};
       if (verbose) sim_args.push_back("--verbose");
+      // lcm-logger is a passive listener: pace the lockstep so it keeps up on a busy machine.
+      if (!log_file.empty()) sim_args.insert(sim_args.end(), {"--min-tick-us", "3000"});
       children.push_back({"ahhs-sim", Spawn(sim_args, quiet)});
       children.push_back(
           {"ahhs-fitness",

@@ -1,5 +1,7 @@
 #include "tools/launch/episode_runner.h"
 
+#include <unistd.h>
+
 #include <ahhs/fitness_t.hpp>
 #include <ahhs/module_status_t.hpp>
 #include <ahhs/sim_clock_t.hpp>
@@ -12,6 +14,7 @@
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
 #include "evolver/fitness/fitness_node.h"
+#include "modules/core/organism.h"
 #include "modules/node/genome_codec.h"
 #include "modules/node/module_node.h"
 #include "sim/node/sim_node.h"
@@ -171,6 +174,51 @@ EpisodeResult RunFused(const EpisodeSpec& spec) {
     if (spec.realtime) bus.Handle(std::min(wait, std::chrono::microseconds(1000)));
   };
   return RunEpisode(bus, spec, pump, [](std::string*) { return true; });
+}
+
+double RunDirect(const EpisodeSpec& spec) {
+  auto scenario = sim::MakeScenario(spec.config);
+  scenario->Reset(static_cast<std::uint64_t>(spec.seed));
+  const int n = scenario->num_compartments();
+  std::vector<std::vector<int>> links(static_cast<std::size_t>(n));
+  for (auto [a, b] : scenario->Docking()) {
+    links[static_cast<std::size_t>(a)].push_back(b);
+    links[static_cast<std::size_t>(b)].push_back(a);
+  }
+  const modules::Controller controller(spec.genome);
+  modules::Organism organism(controller, links);
+  const auto ns = static_cast<std::size_t>(scenario->num_sensors());
+  const auto na = static_cast<std::size_t>(scenario->num_actuators());
+  std::vector<std::vector<double>> sensors(static_cast<std::size_t>(n), std::vector<double>(ns));
+  std::vector<std::unique_ptr<bool[]>> sensor_masks, actuator_masks;
+  std::vector<modules::TickInput> inputs(static_cast<std::size_t>(n));
+  for (int c = 0; c < n; ++c) {
+    sensor_masks.emplace_back(new bool[ns]);
+    actuator_masks.emplace_back(new bool[na]);
+    for (std::size_t j = 0; j < ns; ++j)
+      sensor_masks.back()[j] = scenario->sensor_owned(c, static_cast<int>(j));
+    for (std::size_t a = 0; a < na; ++a)
+      actuator_masks.back()[a] = scenario->actuator_owned(c, static_cast<int>(a));
+  }
+  while (true) {
+    for (int c = 0; c < n; ++c) {
+      const auto i = static_cast<std::size_t>(c);
+      scenario->ReadSensors(c, sensors[i].data());
+      inputs[i] = {sensors[i].data(), sensor_masks[i].get(), actuator_masks[i].get(), 0};
+    }
+    organism.Step(inputs);
+    for (int c = 0; c < n; ++c) scenario->SetActuators(c, organism.state(c).actuators.data());
+    if (scenario->Step() != sim::StepStatus::kRunning) break;
+  }
+  return scenario->Fitness();
+}
+
+std::string ExecutableDir() {
+  char buf[4096];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) return ".";
+  const std::string path(buf, static_cast<std::size_t>(n));
+  return path.substr(0, path.rfind('/'));
 }
 
 }  // namespace ahhs::launch

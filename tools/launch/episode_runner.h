@@ -50,4 +50,11 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
 // process over a fresh memq:// bus.
 EpisodeResult RunFused(const EpisodeSpec& spec);
 
+// The reference without any bus: scenario and organism stepped in one loop (lockstep order).
+// Returns the scenario's own fitness; the arenas must reproduce it.
+double RunDirect(const EpisodeSpec& spec);
+
+// Directory of the running executable (where ahhs-launch finds ahhs-sim and the others).
+std::string ExecutableDir();
+
 }  // namespace ahhs::launch

@@ -6,6 +6,11 @@
 
 namespace ahhs::evolver {
 
+double ControlPeriod(sim::ScenarioKind kind) {
+  return kind == sim::ScenarioKind::kPendulum ? sim::PendulumConstants{}.control_period
+                                              : sim::GaitConstants{}.control_period;
+}
+
 std::int64_t EpisodeTicks(sim::ScenarioKind kind, double duration) {
   if (kind == sim::ScenarioKind::kPendulum) {
     const sim::PendulumConstants k;
@@ -44,8 +49,9 @@ void FitnessNode::OnControl(const sim_control_t& m) {
     return;
   }
   episode_ = m.episode;
+  kind_ = kind;
   expected_ticks_ = EpisodeTicks(kind, m.duration);
-  monitor_ = std::make_unique<FitnessMonitor>(kind, 0.05, expected_ticks_);
+  monitor_ = std::make_unique<FitnessMonitor>(kind, ControlPeriod(kind), expected_ticks_);
   final_.reset();
   next_report_ = 1.0;
   last_tick_ = 0;
@@ -83,7 +89,7 @@ fitness_t FitnessNode::Message(bool is_final, std::int8_t status, const std::str
   f.utime = bus::NowUtime();
   f.episode = episode_;
   f.tick = last_tick_;
-  f.sim_time = static_cast<double>(monitor_->ticks_seen()) * 0.05;
+  f.sim_time = static_cast<double>(monitor_->ticks_seen()) * ControlPeriod(kind_);
   f.fitness = monitor_->fitness();
   f.cost = monitor_->cost();
   f.is_final = is_final;

@@ -2,9 +2,6 @@
 // one ahhs-module per compartment, ahhs-fitness), or with --fused in this process over memq://.
 // Prints "fitness: <value>" as its last line. Every child is stopped on success, on error and on
 // Ctrl-C; children also die with the launcher (PR_SET_PDEATHSIG).
-#include <sys/prctl.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -12,12 +9,11 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
-#include <thread>
 
-#include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "modules/core/genome_json.h"
 #include "tools/launch/episode_runner.h"
+#include "tools/launch/process_arena.h"
 
 namespace al = ahhs::launch;
 
@@ -25,70 +21,6 @@ namespace {
 
 std::atomic<bool> g_interrupted{false};
 void OnSignal(int) { g_interrupted = true; }
-
-struct Child {
-  std::string name;
-  pid_t pid = -1;
-};
-
-pid_t Spawn(const std::vector<std::string>& argv, bool quiet) {
-  const pid_t parent = getpid();
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("fork failed");
-  if (pid == 0) {
-    prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the launcher
-    if (getppid() != parent) _exit(1);
-    std::signal(SIGINT, SIG_IGN);  // Ctrl-C goes to the launcher, which stops us in order
-    if (quiet) {
-      FILE* devnull = std::fopen("/dev/null", "w");
-      if (devnull) dup2(fileno(devnull), STDOUT_FILENO);
-    }
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    execv(args[0], args.data());
-    std::fprintf(stderr, "ahhs-launch: cannot run %s\n", args[0]);
-    _exit(127);
-  }
-  return pid;
-}
-
-void StopAll(std::vector<Child>& children, int signal = SIGTERM) {
-  for (auto& c : children)
-    if (c.pid > 0) kill(c.pid, signal);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
-  for (auto& c : children) {
-    while (c.pid > 0) {
-      if (waitpid(c.pid, nullptr, WNOHANG) != 0) {
-        c.pid = -1;
-      } else if (std::chrono::steady_clock::now() > deadline) {
-        kill(c.pid, SIGKILL);
-        waitpid(c.pid, nullptr, 0);
-        c.pid = -1;
-      } else {
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-      }
-    }
-  }
-}
-
-// False (with a message) when a child has ended before the episode did. The children serve
-// until stopped, so any exit during the episode is a failure.
-bool ChildrenAlive(std::vector<Child>& children, std::string* why) {
-  for (auto& c : children) {
-    if (c.pid <= 0) continue;
-    int status = 0;
-    if (waitpid(c.pid, &status, WNOHANG) == c.pid) {
-      c.pid = -1;
-      *why = c.name + " ended during the episode (" +
-             (WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
-                                  : "exit status " + std::to_string(WEXITSTATUS(status))) +
-             ")";
-      return false;
-    }
-  }
-  return true;
-}
 
 }  // namespace
 
@@ -160,66 +92,25 @@ int main(int argc, char** argv) {
     result = al::RunFused(spec);
   } else {
     if (url.empty()) url = ahhs::bus::kDefaultLcmUrl;
-    std::vector<Child> children;
     try {
-      const std::string dir = al::ExecutableDir();
-      const bool quiet = !verbose;
-      if (!log_file.empty()) {
-        children.push_back({"lcm-logger", Spawn({"/usr/bin/lcm-logger", "--lcm-url=" + url,
-                                                 "--quiet", "--force", log_file},
-                                                quiet)});
-        for (int k = 0; k < 200; ++k) {  // wait until the logger has opened its file
-          struct stat st;
-          if (stat(log_file.c_str(), &st) == 0) break;
-          std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      }
-      std::vector<std::string> sim_args{dir + "/ahhs-sim",
-                                        "--lcm-url",
-                                        url,
-                                        "--arena",
-                                        spec.arena,
-                                        "--lockstep-timeout-ms",
-                                        std::to_string(lockstep_timeout_ms)};
-      if (verbose) sim_args.push_back("--verbose");
-      // lcm-logger is a passive listener: pace the lockstep so it keeps up on a busy machine.
-      if (!log_file.empty()) sim_args.insert(sim_args.end(), {"--min-tick-us", "3000"});
-      children.push_back({"ahhs-sim", Spawn(sim_args, quiet)});
-      children.push_back(
-          {"ahhs-fitness",
-           Spawn({dir + "/ahhs-fitness", "--lcm-url", url, "--arena", spec.arena}, quiet)});
-      for (int m = 0; m < spec.config.num_modules; ++m)
-        children.push_back({"ahhs-module " + std::to_string(m),
-                            Spawn({dir + "/ahhs-module", "--id", std::to_string(m), "--lcm-url",
-                                   url, "--arena", spec.arena, "--hormone-timeout-ms",
-                                   std::to_string(std::max(1, lockstep_timeout_ms / 4))},
-                                  quiet)});
-      // The launcher's own bus is opened after the children are forked, so that no child
-      // inherits its sockets.
-      auto bus_ptr = ahhs::bus::MakeBus(url);
-      ahhs::bus::Bus& bus = *bus_ptr;
-      auto alive = [&](std::string* why) {
-        if (g_interrupted) {
-          *why = "interrupted";
-          return false;
-        }
-        return ChildrenAlive(children, why);
-      };
-      result = al::RunEpisode(
-          bus, spec, [&](std::chrono::microseconds w) { bus.Handle(w); }, alive);
-      if (result.ok && !log_file.empty()) {
-        // Let the logger write the last messages, then stop it with SIGINT (it flushes on exit).
-        std::this_thread::sleep_for(std::chrono::milliseconds(300));
-        kill(children[0].pid, SIGINT);
-        for (int k = 0; k < 300 && waitpid(children[0].pid, nullptr, WNOHANG) == 0; ++k)
-          std::this_thread::sleep_for(std::chrono::milliseconds(10));
-      }
+      al::ProcessArenaOptions options;
+      options.url = url;
+      options.arena = spec.arena;
+      options.num_modules = spec.config.num_modules;
+      options.lockstep_timeout_ms = lockstep_timeout_ms;
+      options.verbose = verbose;
+      options.log_file = log_file;
+      al::ProcessArena arena_processes(options);
+      result = arena_processes.Run(spec, [](std::string* why) {
+        if (!g_interrupted) return true;
+        *why = "interrupted";
+        return false;
+      });
+      if (result.ok) arena_processes.FinishLog();
     } catch (const std::exception& e) {
       result.ok = false;
       result.error = e.what();
     }
-    StopAll(children);
   }
   if (!result.ok) {
     std::cerr << "ahhs-launch: episode failed: " << result.error << '\n';

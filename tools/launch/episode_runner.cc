@@ -145,8 +145,11 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
     }
     pump(std::chrono::milliseconds(20));
   }
-  if (final_fitness->status != fitness_t::OK)
-    return finish({false, 0, 0, final_fitness->message, 0});
+  if (final_fitness->status != fitness_t::OK) {
+    EpisodeResult failed{false, 0, 0, final_fitness->message, 0};
+    failed.episode_failed = true;
+    return finish(failed);
+  }
   return finish(
       {true, final_fitness->fitness, final_fitness->cost, "", final_fitness->states_missed});
 }
@@ -176,7 +179,7 @@ EpisodeResult RunFused(const EpisodeSpec& spec) {
   return RunEpisode(bus, spec, pump, [](std::string*) { return true; });
 }
 
-double RunDirect(const EpisodeSpec& spec) {
+EpisodeResult RunDirectEpisode(const EpisodeSpec& spec) {
   auto scenario = sim::MakeScenario(spec.config);
   scenario->Reset(static_cast<std::uint64_t>(spec.seed));
   const int n = scenario->num_compartments();
@@ -208,10 +211,18 @@ double RunDirect(const EpisodeSpec& spec) {
     }
     organism.Step(inputs);
     for (int c = 0; c < n; ++c) scenario->SetActuators(c, organism.state(c).actuators.data());
-    if (scenario->Step() != sim::StepStatus::kRunning) break;
+    const sim::StepStatus status = scenario->Step();
+    if (status == sim::StepStatus::kFailed) {
+      EpisodeResult failed{false, 0, 0, scenario->error(), 0};
+      failed.episode_failed = true;
+      return failed;
+    }
+    if (status == sim::StepStatus::kFinished) break;
   }
-  return scenario->Fitness();
+  return {true, scenario->Fitness(), scenario->Cost(), "", 0};
 }
+
+double RunDirect(const EpisodeSpec& spec) { return RunDirectEpisode(spec).fitness; }
 
 std::string ExecutableDir() {
   char buf[4096];

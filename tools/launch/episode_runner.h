@@ -34,6 +34,9 @@ struct EpisodeResult {
   double cost = 0;
   std::string error;
   int states_missed = 0;
+  // The episode itself failed (physics blew up; `error` says how): a property of the genome
+  // and seed, not of the arena. False for arena failures (timeouts, dead processes).
+  bool episode_failed = false;
 };
 
 // Checks the genome's sensor/actuator shape against the scenario; "" or a clear message.
@@ -51,7 +54,9 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
 EpisodeResult RunFused(const EpisodeSpec& spec);
 
 // The reference without any bus: scenario and organism stepped in one loop (lockstep order).
-// Returns the scenario's own fitness; the arenas must reproduce it.
+// Returns the scenario's own fitness and cost; the arenas must reproduce them.
+EpisodeResult RunDirectEpisode(const EpisodeSpec& spec);
+// RunDirectEpisode's fitness (tests and benchmarks of episodes that do not fail).
 double RunDirect(const EpisodeSpec& spec);
 
 // Directory of the running executable (where ahhs-launch finds ahhs-sim and the others).

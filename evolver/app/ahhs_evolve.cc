@@ -1,0 +1,377 @@
+// ahhs-evolve: the paper's GA over the evaluation farm, stored in a run directory
+// (docs/evolution.md). Starts --workers local ahhs-worker processes itself (default: one per
+// core) and uses any other worker heard on the bus. Ctrl-C stops cleanly; --resume DIR
+// continues a stopped or killed run and ends with exactly the uninterrupted run's results.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "bus/fault_bus.h"
+#include "bus/lcm_bus.h"
+#include "evolver/evolve/evolution.h"
+#include "evolver/farm/arena_evaluator.h"
+#include "evolver/farm/farm_evaluator.h"
+#include "evolver/store/run_store.h"
+#include "tools/launch/episode_runner.h"
+#include "tools/launch/process_arena.h"
+
+namespace ev = ahhs::evolver;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+std::atomic<int> g_interrupts{0};
+void OnSignal(int) {
+  if (++g_interrupts >= 3) std::_Exit(130);  // the third Ctrl-C does not wait for anything
+}
+
+std::string HostName() {
+  char buf[256] = {0};
+  if (gethostname(buf, sizeof buf - 1) != 0) return "localhost";
+  return buf;
+}
+
+std::string FormatDuration(double s) {
+  if (!(s >= 0) || !std::isfinite(s)) return "?";
+  char buf[32];
+  const long t = std::lround(s);
+  if (t >= 3600)
+    std::snprintf(buf, sizeof buf, "%ldh%02ldm", t / 3600, (t / 60) % 60);
+  else if (t >= 60)
+    std::snprintf(buf, sizeof buf, "%ldm%02lds", t / 60, t % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%lds", t);
+  return buf;
+}
+
+// The terminal display: a progress bar with ETA on a terminal, plain lines otherwise.
+class Progress {
+ public:
+  Progress(int first_generation, int generations)
+      : tty_(isatty(STDOUT_FILENO) != 0),
+        generations_(generations),
+        first_(first_generation),
+        start_(Clock::now()) {}
+
+  void Evaluated(int generation, std::size_t done, std::size_t total) {
+    if (!tty_) return;
+    const auto now = Clock::now();
+    if (done != total && now - last_draw_ < std::chrono::milliseconds(100)) return;
+    last_draw_ = now;
+    const double gens_done = (generation - first_) + static_cast<double>(done) / static_cast<double>(total);
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double eta =
+        gens_done > 0 ? elapsed / gens_done * (generations_ - first_ - gens_done) : NAN;
+    const int width = 30;
+    const int filled = static_cast<int>(width * static_cast<double>(done) / static_cast<double>(total));
+    std::string bar(static_cast<std::size_t>(filled), '#');
+    bar.resize(width, '.');
+    std::printf("\r\033[K generation %d/%d [%s] %zu/%zu  ETA %s%s", generation, generations_,
+                bar.c_str(), done, total, FormatDuration(eta).c_str(), last_.c_str());
+    std::fflush(stdout);
+    drawn_ = true;
+  }
+
+  void Generation(const ev::GenerationRecord& r) {
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "generation %d/%d: best %.6f  mean %.6f  median %.6f  worst %.6f  (%.1f s)",
+                  r.generation, generations_ - 1, r.stats.best, r.stats.mean, r.stats.median,
+                  r.stats.worst, r.wall_time);
+    Clear();
+    std::printf("%s\n", line);
+    std::fflush(stdout);
+    char summary[80];
+    std::snprintf(summary, sizeof summary, "  | last: best %.4f mean %.4f", r.stats.best,
+                  r.stats.mean);
+    last_ = summary;
+  }
+
+  void Say(const std::string& text) {
+    Clear();
+    std::fprintf(stderr, "ahhs-evolve: %s\n", text.c_str());
+  }
+
+  void Clear() {
+    if (tty_ && drawn_) {
+      std::printf("\r\033[K");
+      std::fflush(stdout);
+      drawn_ = false;
+    }
+  }
+
+ private:
+  bool tty_;
+  int generations_, first_;
+  Clock::time_point start_, last_draw_{};
+  std::string last_;
+  bool drawn_ = false;
+};
+
+struct LocalWorkers {
+  std::vector<pid_t> pids;
+  std::vector<std::vector<std::string>> argv;
+  int restarts = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"ahhs-evolve: evolves hormone controllers (the paper's GA) on evaluation workers"};
+  app.set_config("--config", "", "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
+  std::string scenario = "gait", joints = "damped", variant = "ahhs2", out_dir, resume_dir,
+              arena = "direct", url = ahhs::bus::kDefaultLcmUrl;
+  int modules = 5, hormones = 5, rules = 30, population = 20, generations = 200, elitism = 1,
+      workers = -1;
+  double duration = 0, mutation_rate = 0.15, mutation_max_change = 0.1, crossover_rate = 0.05;
+  std::uint64_t seed = 1;
+  double job_deadline = 300, worker_wait = 60;
+  bool overwrite = false;
+  app.add_option("--scenario", scenario, "gait or pendulum")
+      ->check(CLI::IsMember({"gait", "pendulum"}))
+      ->capture_default_str();
+  app.add_option("--joints", joints, "gait docking: damped or fixed")
+      ->check(CLI::IsMember({"damped", "fixed"}))
+      ->capture_default_str();
+  app.add_option("--modules", modules, "gait: modules in the chain")->capture_default_str();
+  app.add_option("--duration", duration,
+                 "episode length, simulated seconds (0: the task's, 60 s gait / 3000 ticks)")
+      ->capture_default_str();
+  app.add_option("--variant", variant, "controller: ahhs1 or ahhs2")
+      ->check(CLI::IsMember({"ahhs1", "ahhs2"}))
+      ->capture_default_str();
+  app.add_option("--hormones", hormones, "hormones per controller")->capture_default_str();
+  app.add_option("--rules", rules, "rules per controller")->capture_default_str();
+  app.add_option("--population", population, "individuals per generation")
+      ->capture_default_str();
+  app.add_option("--generations", generations, "generations")->capture_default_str();
+  app.add_option("--elitism", elitism, "best individuals copied (and re-evaluated)")
+      ->capture_default_str();
+  app.add_option("--mutation-rate", mutation_rate, "probability that a gene mutates")
+      ->capture_default_str();
+  app.add_option("--mutation-max-change", mutation_max_change, "largest change of a real field")
+      ->capture_default_str();
+  app.add_option("--crossover-rate", crossover_rate, "two-point crossover rate")
+      ->capture_default_str();
+  app.add_option("--seed", seed, "run seed (every random draw of the run derives from it)")
+      ->capture_default_str();
+  auto* out_opt = app.add_option("--out", out_dir, "run directory (default: runs/<time>-<task>)");
+  auto* resume_opt =
+      app.add_option("--resume", resume_dir, "continue the run stored in this directory");
+  out_opt->excludes(resume_opt);
+  app.add_flag("--overwrite", overwrite, "replace an existing run directory given with --out");
+  app.add_option("--workers", workers,
+                 "local worker processes to start (default: one per core; 0: only external)")
+      ->check(CLI::Range(0, 256));
+  app.add_option("--arena", arena, "how local workers evaluate: direct, fused or processes")
+      ->check(CLI::IsMember({"direct", "fused", "processes"}))
+      ->capture_default_str();
+  app.add_option("--lcm-url", url, "LCM URL of the evaluation farm (ttl=1 to use LAN workers)")
+      ->capture_default_str();
+  app.add_option("--job-deadline", job_deadline, "seconds before an evaluation is re-issued")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--worker-wait", worker_wait,
+                 "seconds to wait for any worker before giving up (the run stays resumable)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  // The run: a new one from the options, or the stored one.
+  std::string command_line;
+  for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
+  std::unique_ptr<ev::RunStore> store;
+  ev::EvolveConfig config;
+  try {
+    if (!resume_dir.empty()) {
+      for (const char* name :
+           {"--scenario", "--joints", "--modules", "--duration", "--variant", "--hormones",
+            "--rules", "--population", "--generations", "--elitism", "--mutation-rate",
+            "--mutation-max-change", "--crossover-rate", "--seed", "--overwrite"})
+        if (app.count(name))
+          throw std::invalid_argument(std::string(name) +
+                                      " cannot be given with --resume: a resumed run keeps "
+                                      "its stored configuration");
+      store = ev::RunStore::Open(resume_dir);
+      config = ev::ConfigFromJson(store->config());
+    } else {
+      config.scenario.kind = ahhs::sim::ParseScenarioKind(scenario);
+      config.scenario.joints = ahhs::sim::ParseJoints(joints);
+      config.scenario.num_modules =
+          config.scenario.kind == ahhs::sim::ScenarioKind::kPendulum ? 2 : modules;
+      config.scenario.duration = duration;
+      config.variant =
+          variant == "ahhs1" ? ahhs::modules::Variant::kAhhs1 : ahhs::modules::Variant::kAhhs2;
+      config.hormones = hormones;
+      config.rules = rules;
+      config.ga.population = population;
+      config.ga.generations = generations;
+      config.ga.elitism = elitism;
+      config.ga.mutation.gene_rate = mutation_rate;
+      config.ga.mutation.max_change = mutation_max_change;
+      config.ga.crossover_rate = crossover_rate;
+      config.seed = seed;
+      if (duration < 0) throw std::invalid_argument("--duration must not be negative");
+      const std::string error = ev::CheckEvolveConfig(config);
+      if (!error.empty()) throw std::invalid_argument(error);
+      if (out_dir.empty()) {
+        char stamp[32];
+        const std::time_t t = std::time(nullptr);
+        std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&t));
+        out_dir = std::string("runs/") + stamp + "-" + scenario;
+      }
+      const std::string run_id =
+          HostName() + "-" + std::to_string(getpid()) + "-" + std::to_string(std::time(nullptr));
+      store = ev::RunStore::Create(out_dir, run_id, config.seed, ev::ConfigToJson(config),
+                                   overwrite);
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "ahhs-evolve: " << e.what() << '\n';
+    return 1;
+  }
+  const std::string dir = store->dir();
+  const int session = store->BeginSession(command_line);
+  const int first = store->LastGeneration() + 1;
+  const std::string wire_run = store->run_id() + "/s" + std::to_string(session);
+  if (first >= config.ga.generations) {
+    std::cout << "the run in " << dir << " is already complete (" << config.ga.generations
+              << " generations)\n";
+  }
+
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+
+  // Local workers, started before our own bus exists.
+  if (workers < 0) workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  LocalWorkers local;
+  const std::string worker_bin = ahhs::launch::ExecutableDir() + "/ahhs-worker";
+  for (int k = 0; k < workers && first < config.ga.generations; ++k) {
+    local.argv.push_back({worker_bin, "--lcm-url", url, "--arena", arena, "--id",
+                          HostName() + ":" + std::to_string(getpid()) + "/w" +
+                              std::to_string(k)});
+    local.pids.push_back(ahhs::launch::SpawnChild(local.argv.back(), true));
+  }
+
+  Progress progress(first, config.ga.generations);
+  std::printf("run directory: %s\n", dir.c_str());
+  std::printf("%s %s, %s %d hormones x %d rules, population %d, generations %d, seed %llu%s\n",
+              ahhs::sim::ScenarioName(config.scenario.kind),
+              config.scenario.kind == ahhs::sim::ScenarioKind::kGait
+                  ? (std::string(ahhs::sim::JointsName(config.scenario.joints)) + " docking, " +
+                     std::to_string(config.scenario.num_modules) + " modules")
+                        .c_str()
+                  : "cart and pole",
+              ahhs::modules::VariantName(config.variant), config.hormones, config.rules,
+              config.ga.population, config.ga.generations,
+              static_cast<unsigned long long>(config.seed),
+              first > 0 ? (", resuming at generation " + std::to_string(first)).c_str() : "");
+  std::printf("workers: %d local (%s arena)%s\n", static_cast<int>(local.pids.size()),
+              arena.c_str(), workers == 0 ? ", waiting for external ones" : "");
+  std::fflush(stdout);
+
+  int exit_code = 0;
+  try {
+    auto bus = ahhs::bus::MakeBus(url);
+    ev::FarmOptions options;
+    options.run = wire_run;
+    options.config = config.scenario;
+    options.population = config.ga.population;
+    options.lease.job_deadline =
+        std::chrono::milliseconds(static_cast<std::int64_t>(job_deadline * 1000));
+    options.no_worker_timeout =
+        std::chrono::milliseconds(static_cast<std::int64_t>(worker_wait * 1000));
+    int current_generation = first;
+    ev::FarmEvaluator::Hooks hooks;
+    hooks.interrupted = [&] {
+      // Keep the local workers alive: one that died is started again.
+      for (std::size_t k = 0; k < local.pids.size(); ++k) {
+        int status = 0;
+        if (local.pids[k] > 0 && waitpid(local.pids[k], &status, WNOHANG) == local.pids[k]) {
+          local.pids[k] = -1;
+          if (g_interrupts > 0) continue;
+          if (local.restarts >= 20) {
+            progress.Say("local worker " + std::to_string(k) + " ended; not restarted (" +
+                         std::to_string(local.restarts) + " restarts already)");
+            continue;
+          }
+          progress.Say("local worker " + std::to_string(k) + " ended (" +
+                       (WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status))
+                                            : "exit " + std::to_string(WEXITSTATUS(status))) +
+                       "); its jobs go to other workers; starting it again");
+          ++local.restarts;
+          local.pids[k] = ahhs::launch::SpawnChild(local.argv[k], true);
+        }
+      }
+      return g_interrupts > 0;
+    };
+    hooks.progress = [&](std::size_t done, std::size_t total) {
+      progress.Evaluated(current_generation, done, total);
+    };
+    hooks.report = [&](const std::string& text) { progress.Say(text); };
+    ev::FarmEvaluator farm(bus.get(), options, hooks);
+
+    ev::EvolutionHooks evolution_hooks;
+    evolution_hooks.on_generation = [&](const ev::GenerationRecord& r) {
+      progress.Generation(r);
+      current_generation = r.generation + 1;
+    };
+    evolution_hooks.stop = [&] { return g_interrupts > 0; };
+    const bool finished = ev::RunEvolution(*store, config, farm, session, evolution_hooks);
+    progress.Clear();
+    if (!finished) throw ev::FarmInterrupted();
+    const auto& c = farm.counters();
+    if (c.reissued || c.invalid_results || c.results.dropped || c.statuses.dropped)
+      std::printf(
+          "farm: %lld jobs re-issued, %lld invalid results, %llu undecodable messages dropped\n",
+          static_cast<long long>(c.reissued), static_cast<long long>(c.invalid_results),
+          static_cast<unsigned long long>(c.results.dropped + c.statuses.dropped));
+  } catch (const ev::FarmInterrupted&) {
+    progress.Clear();
+    std::printf("interrupted: generations 0-%d are stored in %s\ncontinue with: ahhs-evolve "
+                "--resume %s\n",
+                store->LastGeneration(), dir.c_str(), dir.c_str());
+    exit_code = 130;
+  } catch (const std::exception& e) {
+    progress.Clear();
+    std::cerr << "ahhs-evolve: " << e.what() << "\nthe run is stored up to generation "
+              << store->LastGeneration() << "; continue with: ahhs-evolve --resume " << dir
+              << '\n';
+    exit_code = 2;
+  }
+  ahhs::launch::StopChildren(&local.pids, std::chrono::seconds(5));
+  if (exit_code != 0) return exit_code;
+
+  // Summary.
+  try {
+    const ev::IndividualRecord best = store->Best();
+    std::string replay = "ahhs-launch --scenario " +
+                         std::string(ahhs::sim::ScenarioName(config.scenario.kind));
+    if (config.scenario.kind == ahhs::sim::ScenarioKind::kGait)
+      replay += " --joints " + std::string(ahhs::sim::JointsName(config.scenario.joints)) +
+                " --modules " + std::to_string(config.scenario.num_modules);
+    if (config.scenario.duration > 0) {
+      char d[32];
+      std::snprintf(d, sizeof d, "%.17g", config.scenario.duration);
+      replay += std::string(" --duration ") + d;
+    }
+    replay += " --genome " + dir + "/best.json --seed " +
+              std::to_string(static_cast<std::int64_t>(best.eval_seed));
+    std::printf("done: %d generations in %s\n", config.ga.generations, dir.c_str());
+    std::printf("best fitness: %.17g (generation %d, individual %d)\n",
+                best.evaluation.fitness, best.generation, best.index);
+    std::printf("replay the best genome: %s\n", replay.c_str());
+  } catch (const std::exception& e) {
+    std::cerr << "ahhs-evolve: " << e.what() << '\n';
+    return 2;
+  }
+  return 0;
+}

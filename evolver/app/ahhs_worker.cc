@@ -1,0 +1,125 @@
+// ahhs-worker: serves evaluation jobs of any ahhs-evolve on the bus (docs/evolution.md,
+// docs/protocol.md "Evaluation farm"). One evaluation at a time per process; --slots N starts N
+// worker processes on this host. Runs until SIGTERM or Ctrl-C.
+//
+// Fault injection for tests (docs/development.md): AHHS_WORKER_FAULT=nan makes every result a
+// NaN fitness; AHHS_WORKER_FAULT=exit-after-K exits after K evaluations.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <iostream>
+#include <limits>
+#include <thread>
+
+#include "bus/fault_bus.h"
+#include "bus/lcm_bus.h"
+#include "evolver/farm/arena_evaluator.h"
+#include "evolver/farm/worker_node.h"
+#include "tools/launch/episode_runner.h"
+#include "tools/launch/process_arena.h"
+
+namespace ev = ahhs::evolver;
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+void OnSignal(int) { g_stop = true; }
+
+std::string HostName() {
+  char buf[256] = {0};
+  if (gethostname(buf, sizeof buf - 1) != 0) return "localhost";
+  return buf;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"ahhs-worker: evaluates genomes for ahhs-evolve runs on this bus"};
+  std::string url = ahhs::bus::kDefaultLcmUrl, arena = "direct", id,
+              arena_url = ahhs::bus::kDefaultLcmUrl;
+  int slots = 1;
+  bool verbose = false;
+  app.add_option("--lcm-url", url, "LCM URL of the evaluation farm (ttl=1 to serve a LAN)")
+      ->capture_default_str();
+  app.add_option("--slots", slots, "evaluations at once (one worker process each)")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  app.add_option("--arena", arena, "how to evaluate: direct, fused or processes")
+      ->check(CLI::IsMember({"direct", "fused", "processes"}))
+      ->capture_default_str();
+  app.add_option("--arena-url", arena_url,
+                 "LCM URL of the process arena's own traffic (--arena processes; host-only by "
+                 "default)")
+      ->capture_default_str();
+  app.add_option("--id", id, "worker id, unique on the bus (default: host:pid)");
+  app.add_flag("-v,--verbose", verbose, "print a line per evaluation");
+  CLI11_PARSE(app, argc, argv);
+
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  const std::string host = HostName();
+
+  if (slots > 1) {
+    // One process per slot (ODE's solver RNG is process-global); this one only supervises.
+    std::vector<pid_t> children;
+    const std::string self = ahhs::launch::ExecutableDir() + "/ahhs-worker";
+    for (int k = 0; k < slots; ++k) {
+      std::vector<std::string> args{self,    "--lcm-url", url,         "--arena",
+                                    arena,   "--arena-url", arena_url, "--id",
+                                    (id.empty() ? host + ":" + std::to_string(getpid()) : id) +
+                                        "/" + std::to_string(k)};
+      if (verbose) args.push_back("--verbose");
+      children.push_back(ahhs::launch::SpawnChild(args, false));
+    }
+    std::cerr << "ahhs-worker: " << slots << " worker processes on " << host << '\n';
+    while (!g_stop) {
+      bool any = false;
+      for (pid_t& pid : children) {
+        if (pid > 0 && waitpid(pid, nullptr, WNOHANG) == pid) pid = -1;
+        if (pid > 0) any = true;
+      }
+      if (!any) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    ahhs::launch::StopChildren(&children, std::chrono::seconds(5));
+    return 0;
+  }
+
+  if (id.empty()) id = host + ":" + std::to_string(getpid());
+  const char* fault = std::getenv("AHHS_WORKER_FAULT");
+  const std::string fault_mode = fault ? fault : "";
+  long exit_after = -1;
+  if (fault_mode.rfind("exit-after-", 0) == 0) exit_after = std::atol(fault_mode.c_str() + 11);
+  try {
+    ev::ArenaEvaluator evaluator(ev::ParseArenaKind(arena), arena_url,
+                                 "W" + std::to_string(getpid()));
+    auto bus = ahhs::bus::MakeBus(url);
+    ev::WorkerNode node(bus.get(), id, host, [&](const ev::EvalJob& job) {
+      ev::EvalOutcome out = evaluator.Evaluate(job);
+      if (fault_mode == "nan") out.fitness = std::numeric_limits<double>::quiet_NaN();
+      if (verbose)
+        std::cout << "job " << job.job << " attempt " << job.attempt << ": fitness "
+                  << out.fitness << (out.message.empty() ? "" : " (" + out.message + ")")
+                  << std::endl;
+      return out;
+    });
+    std::cerr << "ahhs-worker " << id << ": serving (" << arena << " arena) on " << url << '\n';
+    node.Serve([&] {
+      if (exit_after >= 0 && node.counters().evaluations >= exit_after) std::_Exit(3);
+      return g_stop.load();
+    });
+    const auto& c = node.counters();
+    std::cerr << "ahhs-worker " << id << ": " << c.evaluations << " evaluations, " << c.refused
+              << " requests of another protocol version refused, " << c.requests.dropped
+              << " undecodable messages dropped\n";
+  } catch (const std::exception& e) {
+    std::cerr << "ahhs-worker: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

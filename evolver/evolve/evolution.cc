@@ -1,0 +1,130 @@
+#include "evolver/evolve/evolution.h"
+
+#include <chrono>
+#include <stdexcept>
+
+
+namespace ahhs::evolver {
+
+using nlohmann::json;
+
+modules::Shape EvolveConfig::shape() const {
+  auto probe = sim::MakeScenario(scenario);
+  return {variant, hormones, rules, probe->num_sensors(), probe->num_actuators()};
+}
+
+std::string CheckEvolveConfig(const EvolveConfig& c) {
+  std::string e = sim::CheckConfig(c.scenario);
+  if (!e.empty()) return e;
+  if (c.hormones < 1 || c.hormones > modules::Ranges::kMaxHormones)
+    return "hormones must be in [1, " + std::to_string(modules::Ranges::kMaxHormones) + "]";
+  if (c.rules < 1 || c.rules > modules::Ranges::kMaxRules)
+    return "rules must be in [1, " + std::to_string(modules::Ranges::kMaxRules) + "]";
+  return CheckGaParams(c.ga);
+}
+
+json ConfigToJson(const EvolveConfig& c) {
+  return json{{"scenario", sim::ScenarioName(c.scenario.kind)},
+              {"joints", sim::JointsName(c.scenario.joints)},
+              {"modules", c.scenario.num_modules},
+              {"duration", c.scenario.duration},
+              {"variant", modules::VariantName(c.variant)},
+              {"hormones", c.hormones},
+              {"rules", c.rules},
+              {"population", c.ga.population},
+              {"generations", c.ga.generations},
+              {"elitism", c.ga.elitism},
+              {"mutation_rate", c.ga.mutation.gene_rate},
+              {"mutation_max_change", c.ga.mutation.max_change},
+              {"crossover_rate", c.ga.crossover_rate},
+              {"selection_epsilon", c.ga.selection_epsilon},
+              {"seed", c.seed}};
+}
+
+EvolveConfig ConfigFromJson(const json& doc) {
+  EvolveConfig c;
+  try {
+    c.scenario.kind = sim::ParseScenarioKind(doc.at("scenario").get<std::string>());
+    c.scenario.joints = sim::ParseJoints(doc.at("joints").get<std::string>());
+    c.scenario.num_modules = doc.at("modules").get<int>();
+    c.scenario.duration = doc.at("duration").get<double>();
+    const std::string variant = doc.at("variant").get<std::string>();
+    if (variant != "ahhs1" && variant != "ahhs2")
+      throw std::invalid_argument("variant must be ahhs1 or ahhs2");
+    c.variant = variant == "ahhs1" ? modules::Variant::kAhhs1 : modules::Variant::kAhhs2;
+    c.hormones = doc.at("hormones").get<int>();
+    c.rules = doc.at("rules").get<int>();
+    c.ga.population = doc.at("population").get<int>();
+    c.ga.generations = doc.at("generations").get<int>();
+    c.ga.elitism = doc.at("elitism").get<int>();
+    c.ga.mutation.gene_rate = doc.at("mutation_rate").get<double>();
+    c.ga.mutation.max_change = doc.at("mutation_max_change").get<double>();
+    c.ga.crossover_rate = doc.at("crossover_rate").get<double>();
+    c.ga.selection_epsilon = doc.at("selection_epsilon").get<double>();
+    c.seed = doc.at("seed").get<std::uint64_t>();
+  } catch (const json::exception& e) {
+    throw std::invalid_argument(std::string("run config: ") + e.what());
+  }
+  const std::string error = CheckEvolveConfig(c);
+  if (!error.empty()) throw std::invalid_argument("run config: " + error);
+  return c;
+}
+
+bool RunEvolution(RunStore& store, const EvolveConfig& config, FitnessEvaluator& evaluator,
+                  int session, const EvolutionHooks& hooks) {
+  auto seconds = hooks.seconds ? hooks.seconds : [] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  };
+  const GaParams& ga = config.ga;
+  std::vector<modules::Genome> population;
+  std::vector<double> fitness;
+  const int last = store.LastGeneration();
+  if (last >= 0) {
+    for (const auto& r : store.LoadGeneration(last)) {
+      population.push_back(r.genome);
+      fitness.push_back(r.evaluation.fitness);
+    }
+    if (static_cast<int>(population.size()) != ga.population)
+      throw RunStoreError(store.dir() + ": generation " + std::to_string(last) + " holds " +
+                          std::to_string(population.size()) + " individuals, the config says " +
+                          std::to_string(ga.population));
+  }
+  for (int g = last + 1; g < ga.generations; ++g) {
+    if (hooks.stop()) return false;
+    const double start = seconds();
+    population = g == 0 ? InitialPopulation(config.shape(), ga, config.seed)
+                        : Breed(population, fitness, ga, config.seed, g);
+    std::vector<EvaluationJob> jobs;
+    for (int i = 0; i < ga.population; ++i)
+      jobs.push_back({g, i, &population[static_cast<std::size_t>(i)],
+                      EvaluationSeed(config.seed, g, i)});
+    const std::vector<Evaluation> results = evaluator.Evaluate(jobs);
+    if (results.size() != jobs.size())
+      throw std::runtime_error("the evaluator returned the wrong number of results");
+    std::vector<IndividualRecord> records;
+    fitness.clear();
+    for (int i = 0; i < ga.population; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      IndividualRecord r;
+      r.generation = g;
+      r.index = i;
+      r.genome = population[k];
+      r.elite = g > 0 && i < ga.elitism;
+      r.eval_seed = jobs[k].seed;
+      r.evaluation = results[k];
+      fitness.push_back(results[k].fitness);
+      records.push_back(std::move(r));
+    }
+    GenerationRecord record;
+    record.generation = g;
+    record.stats = Summarise(fitness);
+    record.wall_time = seconds() - start;
+    record.session = session;
+    store.CommitGeneration(record, records);
+    hooks.on_generation(record);
+  }
+  return true;
+}
+
+}  // namespace ahhs::evolver

@@ -1,0 +1,125 @@
+#include "evolver/farm/farm_codec.h"
+
+#include <ahhs/sim_control_t.hpp>
+#include <limits>
+
+#include "bus/channels.h"
+#include "modules/node/genome_codec.h"
+
+namespace ahhs::evolver {
+
+eval_request_t RequestMessage(const EvalJob& job) {
+  eval_request_t m;
+  m.utime = bus::NowUtime();
+  m.protocol_version = job.protocol_version;
+  m.run = job.run;
+  m.job = job.job;
+  m.attempt = job.attempt;
+  m.worker = job.worker;
+  m.scenario = sim::ScenarioName(job.config.kind);
+  m.num_modules = job.config.num_modules;
+  m.joints = job.config.joints == sim::Joints::kFixed ? sim_control_t::JOINTS_FIXED
+                                                      : sim_control_t::JOINTS_DAMPED;
+  m.duration = job.config.duration;
+  m.seed = static_cast<std::int64_t>(job.seed);
+  m.deadline_utime = job.deadline_utime;
+  m.genome = modules::GenomeMessage(job.genome, job.job);
+  return m;
+}
+
+std::string JobFromMessage(const eval_request_t& m, EvalJob* out) {
+  EvalJob job;
+  job.protocol_version = m.protocol_version;
+  job.run = m.run;
+  job.job = m.job;
+  job.attempt = m.attempt;
+  job.worker = m.worker;
+  try {
+    job.config.kind = sim::ParseScenarioKind(m.scenario);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  if (m.joints != sim_control_t::JOINTS_DAMPED && m.joints != sim_control_t::JOINTS_FIXED)
+    return "unknown joints " + std::to_string(m.joints);
+  job.config.joints =
+      m.joints == sim_control_t::JOINTS_FIXED ? sim::Joints::kFixed : sim::Joints::kDamped;
+  job.config.num_modules = m.num_modules;
+  job.config.duration = m.duration;
+  const std::string config_error = sim::CheckConfig(job.config);
+  if (!config_error.empty()) return config_error;
+  job.seed = static_cast<std::uint64_t>(m.seed);
+  job.deadline_utime = m.deadline_utime;
+  const std::string genome_error = modules::GenomeFromMessage(m.genome, &job.genome);
+  if (!genome_error.empty()) return "genome: " + genome_error;
+  *out = std::move(job);
+  return "";
+}
+
+eval_result_t ResultMessage(const EvalOutcome& o) {
+  eval_result_t m;
+  m.utime = bus::NowUtime();
+  m.protocol_version = o.protocol_version;
+  m.run = o.run;
+  m.job = o.job;
+  m.attempt = o.attempt;
+  m.worker = o.worker;
+  m.status = o.status == EvalOutcome::Status::kOk      ? eval_result_t::OK
+             : o.status == EvalOutcome::Status::kError ? eval_result_t::ERROR
+                                                       : eval_result_t::REFUSED;
+  m.fitness = o.fitness;
+  m.cost = o.cost;
+  m.wall_time = o.wall_time;
+  m.late_messages = o.late_messages;
+  m.message = o.message;
+  return m;
+}
+
+EvalOutcome OutcomeFromMessage(const eval_result_t& m) {
+  EvalOutcome o;
+  o.protocol_version = m.protocol_version;
+  o.run = m.run;
+  o.job = m.job;
+  o.attempt = m.attempt;
+  o.worker = m.worker;
+  o.status = m.status == eval_result_t::OK      ? EvalOutcome::Status::kOk
+             : m.status == eval_result_t::ERROR ? EvalOutcome::Status::kError
+                                                : EvalOutcome::Status::kRefused;
+  o.fitness = m.fitness;
+  o.cost = m.cost;
+  o.wall_time = m.wall_time;
+  o.late_messages = m.late_messages;
+  o.message = m.message;
+  return o;
+}
+
+worker_status_t StatusMessage(const WorkerStatus& s) {
+  worker_status_t m;
+  m.utime = bus::NowUtime();
+  m.protocol_version = s.protocol_version;
+  m.worker = s.worker;
+  m.host = s.host;
+  m.slots = s.slots;
+  m.free_slots = s.free_slots;
+  m.evaluations_done = s.evaluations_done;
+  const std::size_t n =
+      std::min<std::size_t>(s.jobs.size(), std::numeric_limits<std::int16_t>::max());
+  m.num_jobs = static_cast<std::int16_t>(n);
+  m.jobs.assign(s.jobs.begin(), s.jobs.begin() + static_cast<std::ptrdiff_t>(n));
+  m.run = s.run;
+  return m;
+}
+
+WorkerStatus StatusFromMessage(const worker_status_t& m) {
+  WorkerStatus s;
+  s.protocol_version = m.protocol_version;
+  s.worker = m.worker;
+  s.host = m.host;
+  s.slots = m.slots;
+  s.free_slots = m.free_slots;
+  s.evaluations_done = m.evaluations_done;
+  s.jobs = m.jobs;
+  s.run = m.run;
+  return s;
+}
+
+}  // namespace ahhs::evolver

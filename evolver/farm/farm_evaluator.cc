@@ -1,0 +1,164 @@
+#include "evolver/farm/farm_evaluator.h"
+
+#include <ahhs/eval_request_t.hpp>
+#include <ahhs/eval_result_t.hpp>
+#include <ahhs/worker_status_t.hpp>
+#include <algorithm>
+#include <cmath>
+
+#include "bus/channels.h"
+#include "evolver/farm/farm_codec.h"
+
+namespace ahhs::evolver {
+
+FarmEvaluator::FarmEvaluator(bus::Bus* bus, FarmOptions options, Hooks hooks)
+    : bus_(bus), options_(std::move(options)), hooks_(std::move(hooks)) {
+  subscriptions_.push_back(bus::SubscribeTyped<worker_status_t>(
+      *bus_, bus::kWorkerStatusChannel,
+      [this](const std::string&, const worker_status_t& m) { OnStatus(m); },
+      &counters_.statuses));
+  subscriptions_.push_back(bus::SubscribeTyped<eval_result_t>(
+      *bus_, bus::kEvalResultChannel,
+      [this](const std::string&, const eval_result_t& m) { OnResult(m); }, &counters_.results));
+}
+
+FarmEvaluator::~FarmEvaluator() {
+  for (int id : subscriptions_) bus_->Unsubscribe(id);
+}
+
+void FarmEvaluator::OnStatus(const worker_status_t& msg) {
+  if (msg.protocol_version != kFarmProtocolVersion) {
+    if (refused_.insert(msg.worker).second)
+      hooks_.report("refused worker " + msg.worker + " on " + msg.host +
+                    ": it speaks evaluation protocol version " +
+                    std::to_string(msg.protocol_version) + ", this evolver version " +
+                    std::to_string(kFarmProtocolVersion));
+    return;
+  }
+  if (msg.worker.empty()) return;
+  known_.emplace(msg.worker, msg.host);
+  seen_[msg.worker] = {StatusFromMessage(msg), FarmClock::now()};
+}
+
+void FarmEvaluator::OnResult(const eval_result_t& msg) {
+  if (msg.run != options_.run) return;  // another run's, or a stale session's
+  inbox_.push_back(OutcomeFromMessage(msg));
+}
+
+int FarmEvaluator::WaitForWorkers(int count, std::chrono::milliseconds timeout) {
+  const auto end = FarmClock::now() + timeout;
+  while (static_cast<int>(seen_.size()) < count && FarmClock::now() < end && !hooks_.interrupted())
+    bus_->Handle(std::chrono::milliseconds(20));
+  return static_cast<int>(seen_.size());
+}
+
+std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>& jobs) {
+  LeaseTable table(options_.lease);
+  std::map<std::int64_t, std::size_t> slot_of;  // job id -> position in `jobs`
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    const std::int64_t id = static_cast<std::int64_t>(jobs[k].generation) * options_.population +
+                            jobs[k].index;
+    slot_of[id] = k;
+    table.AddJob(id);
+  }
+  std::vector<Evaluation> results(jobs.size());
+  auto last_worker_seen = FarmClock::now();
+  std::size_t last_done = 0;
+  while (!table.AllDone()) {
+    if (hooks_.interrupted()) throw FarmInterrupted();
+    const auto now = FarmClock::now();
+    // Feed what the workers said into the lease table.
+    for (const auto& [name, w] : seen_) {
+      if (now - w.heard > options_.lease.worker_silence) continue;
+      std::vector<std::int64_t> ours;
+      int others = 0;
+      if (w.status.run == options_.run)
+        ours = w.status.jobs;
+      else
+        others = static_cast<int>(w.status.jobs.size());
+      table.OnWorkerStatus(name, w.status.slots, ours, others, w.heard);
+    }
+    for (const auto& r : table.Expire(now)) {
+      ++counters_.reissued;
+      hooks_.report("job " + std::to_string(r.job) + " re-issued (" + r.reason + ", worker " +
+                    r.worker + ")");
+    }
+    for (const Dispatch& d : table.Schedule(now)) {
+      const EvaluationJob& j = jobs[slot_of.at(d.job)];
+      EvalJob job;
+      job.run = options_.run;
+      job.job = d.job;
+      job.attempt = d.attempt;
+      job.worker = d.worker;
+      job.config = options_.config;
+      job.seed = j.seed;
+      job.deadline_utime =
+          bus::NowUtime() +
+          std::chrono::duration_cast<std::chrono::microseconds>(options_.lease.job_deadline)
+              .count();
+      job.genome = *j.genome;
+      bus::PublishTyped(*bus_, bus::kEvalRequestChannel, RequestMessage(job));
+      ++counters_.dispatched;
+    }
+    if (table.LiveWorkers(now) > 0) {
+      last_worker_seen = now;
+    } else if (now - last_worker_seen > options_.no_worker_timeout) {
+      throw FarmError("no evaluation worker has answered for " +
+                      std::to_string(options_.no_worker_timeout.count() / 1000) +
+                      " s (start one with ahhs-worker, or give ahhs-evolve --workers N)");
+    }
+    bus_->Handle(std::chrono::milliseconds(20));
+    const auto heard = FarmClock::now();
+    for (const EvalOutcome& o : inbox_) {
+      auto slot = slot_of.find(o.job);
+      if (slot == slot_of.end()) {
+        ++counters_.duplicates;
+        continue;
+      }
+      const bool valid = o.status == EvalOutcome::Status::kOk && std::isfinite(o.fitness) &&
+                         std::isfinite(o.cost);
+      const auto verdict = table.OnResult(o.job, o.attempt, o.worker, valid, heard);
+      switch (verdict) {
+        case LeaseTable::Verdict::kAccepted: {
+          Evaluation& e = results[slot->second];
+          e.fitness = o.fitness;
+          e.cost = o.cost;
+          e.worker = o.worker;
+          e.attempt = o.attempt;
+          e.wall_time = o.wall_time;
+          e.message = o.message;
+          counters_.late_messages += o.late_messages;
+          break;
+        }
+        case LeaseTable::Verdict::kIgnored:
+          ++counters_.duplicates;
+          break;
+        case LeaseTable::Verdict::kReissued:
+        case LeaseTable::Verdict::kFailed: {
+          ++counters_.invalid_results;
+          const std::string what =
+              o.status == EvalOutcome::Status::kOk
+                  ? "a non-finite fitness"
+                  : (o.status == EvalOutcome::Status::kRefused ? "a refusal: " : "an error: ") +
+                        o.message;
+          hooks_.report("worker " + o.worker + " returned " + what + " for job " +
+                        std::to_string(o.job) +
+                        (verdict == LeaseTable::Verdict::kFailed ? "; giving up" : "; re-issued"));
+          if (verdict == LeaseTable::Verdict::kFailed)
+            throw FarmError("job " + std::to_string(o.job) + " failed " +
+                            std::to_string(options_.lease.max_invalid) +
+                            " times; last answer: " + what);
+          break;
+        }
+      }
+    }
+    inbox_.clear();
+    if (table.done() != last_done) {
+      last_done = table.done();
+      hooks_.progress(last_done, jobs.size());
+    }
+  }
+  return results;
+}
+
+}  // namespace ahhs::evolver

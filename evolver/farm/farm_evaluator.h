@@ -1,0 +1,99 @@
+// The evolver's side of the evaluation farm (docs/protocol.md, "Evaluation farm"): a
+// FitnessEvaluator that hands a generation's jobs to the workers heard on WORKER/STATUS,
+// collects EVAL/RESULT and re-issues what is lost, late or invalid (LeaseTable). Which worker
+// evaluated what never changes the results: an evaluation is a pure function of (scenario,
+// genome, seed).
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <ahhs/eval_result_t.hpp>
+#include <ahhs/worker_status_t.hpp>
+
+#include "bus/bus.h"
+#include "bus/typed.h"
+#include "evolver/farm/farm_protocol.h"
+#include "evolver/farm/lease_table.h"
+#include "evolver/ga/ga.h"
+
+namespace ahhs::evolver {
+
+class FarmError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+class FarmInterrupted : public std::runtime_error {
+ public:
+  FarmInterrupted() : std::runtime_error("interrupted") {}
+};
+
+struct FarmOptions {
+  std::string run;  // run id on the wire
+  sim::ScenarioConfig config;
+  int population = 1;  // job id = generation * population + index
+  LeaseOptions lease;
+  // Give up when no usable worker has been heard for this long while jobs wait.
+  std::chrono::milliseconds no_worker_timeout{60000};
+};
+
+struct FarmCounters {
+  std::int64_t dispatched = 0;
+  std::int64_t reissued = 0;        // leases ended without a valid result
+  std::int64_t invalid_results = 0;  // error status or non-finite fitness
+  std::int64_t duplicates = 0;       // results ignored (late, repeated, unknown)
+  std::int64_t late_messages = 0;    // reported by process arenas
+  bus::DecodeCounters results, statuses;  // garbage on the farm channels is dropped here
+};
+
+class FarmEvaluator : public FitnessEvaluator {
+ public:
+  // `interrupted()` is asked every loop (Ctrl-C); `progress(done, total)` after every result;
+  // `report(text)` gets one line per notable event (refused worker, re-issue, invalid result).
+  struct Hooks {
+    std::function<bool()> interrupted = [] { return false; };
+    std::function<void(std::size_t, std::size_t)> progress = [](std::size_t, std::size_t) {};
+    std::function<void(const std::string&)> report = [](const std::string&) {};
+  };
+
+  FarmEvaluator(bus::Bus* bus, FarmOptions options, Hooks hooks);
+  ~FarmEvaluator() override;
+  FarmEvaluator(const FarmEvaluator&) = delete;
+  FarmEvaluator& operator=(const FarmEvaluator&) = delete;
+
+  // Throws FarmInterrupted, or FarmError when no worker serves or a job keeps failing.
+  std::vector<Evaluation> Evaluate(const std::vector<EvaluationJob>& jobs) override;
+
+  // Waits until at least `count` workers have been heard (or the timeout); returns how many.
+  int WaitForWorkers(int count, std::chrono::milliseconds timeout);
+
+  const FarmCounters& counters() const { return counters_; }
+  // Workers heard so far: id -> host.
+  const std::map<std::string, std::string>& workers() const { return known_; }
+
+ private:
+  struct WorkerSeen {
+    WorkerStatus status;
+    FarmClock::time_point heard;
+  };
+  void OnStatus(const worker_status_t& msg);
+  void OnResult(const eval_result_t& msg);
+
+  bus::Bus* bus_;
+  FarmOptions options_;
+  Hooks hooks_;
+  FarmCounters counters_;
+  std::vector<int> subscriptions_;
+  std::map<std::string, WorkerSeen> seen_;  // latest status of every compatible worker
+  std::map<std::string, std::string> known_;
+  std::set<std::string> refused_;
+  std::vector<EvalOutcome> inbox_;  // results received during the current Handle()
+};
+
+}  // namespace ahhs::evolver

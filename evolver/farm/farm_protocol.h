@@ -1,0 +1,57 @@
+// The evaluation farm's messages as plain structs (docs/protocol.md, "Evaluation farm"), with
+// no LCM: EVAL/REQUEST (evolver -> one worker), EVAL/RESULT (worker -> evolver), WORKER/STATUS
+// (worker -> all, about 1 Hz and on every change).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "modules/core/genome.h"
+#include "sim/core/scenario.h"
+
+namespace ahhs::evolver {
+
+// Bumped whenever a message of the farm changes meaning. Workers refuse requests of another
+// version; evolvers ignore workers of another version (both say so).
+inline constexpr int kFarmProtocolVersion = 1;
+
+struct EvalJob {
+  int protocol_version = kFarmProtocolVersion;
+  std::string run;  // run id on the wire (unique per evolver session)
+  std::int64_t job = 0;
+  int attempt = 0;
+  std::string worker;  // the worker the job is addressed to
+  sim::ScenarioConfig config;
+  std::uint64_t seed = 0;
+  std::int64_t deadline_utime = 0;  // microseconds since the epoch
+  modules::Genome genome;
+};
+
+struct EvalOutcome {
+  enum class Status { kOk, kError, kRefused };
+  int protocol_version = kFarmProtocolVersion;
+  std::string run;
+  std::int64_t job = 0;
+  int attempt = 0;
+  std::string worker;
+  Status status = Status::kOk;
+  double fitness = 0;
+  double cost = 0;
+  double wall_time = 0;  // seconds
+  int late_messages = 0;
+  std::string message;
+};
+
+struct WorkerStatus {
+  int protocol_version = kFarmProtocolVersion;
+  std::string worker;
+  std::string host;
+  int slots = 1;
+  int free_slots = 1;
+  std::int64_t evaluations_done = 0;
+  std::vector<std::int64_t> jobs;  // jobs queued or being evaluated, all of run `run`
+  std::string run;                 // "" when idle
+};
+
+}  // namespace ahhs::evolver

@@ -1,0 +1,111 @@
+// The evolver's bookkeeping of one batch of evaluation jobs (docs/protocol.md, "Evaluation
+// farm"): which worker holds which job under a lease, until when, and what to re-issue. Pure
+// logic over an injected clock: no LCM, no I/O, tested with a fake time.
+//
+// Rules:
+// - A job is leased to one worker at a time; its attempt number grows with every issue.
+// - A lease ends with a result, or is re-issued when its deadline passes, when its worker has
+//   been silent for `worker_silence`, or when a status from its worker heard more than
+//   `status_grace` after the dispatch does not list it (the request or the result was lost).
+// - Results are idempotent: the first valid result of a job wins, whatever its attempt;
+//   duplicates and results of finished jobs are ignored.
+// - An invalid result (error, non-finite fitness) re-issues the job to another worker when
+//   there is one; after `max_invalid` invalid results the job has failed.
+// - A worker gets at most slots + `prefetch` jobs at once, so that it never waits for the
+//   evolver between two evaluations.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace ahhs::evolver {
+
+using FarmClock = std::chrono::steady_clock;
+
+struct LeaseOptions {
+  std::chrono::milliseconds job_deadline{120000};  // longest one evaluation may take
+  std::chrono::milliseconds worker_silence{10000};
+  std::chrono::milliseconds status_grace{3000};
+  int prefetch = 1;
+  int max_invalid = 5;
+};
+
+struct Dispatch {
+  std::int64_t job = 0;
+  int attempt = 0;
+  std::string worker;
+  FarmClock::time_point deadline;
+};
+
+struct Reissue {
+  std::int64_t job = 0;
+  std::string worker;  // who had it
+  std::string reason;
+};
+
+class LeaseTable {
+ public:
+  explicit LeaseTable(LeaseOptions options) : options_(options) {}
+
+  void AddJob(std::int64_t job);
+
+  // A status of `worker` heard at `now`: its slots, the jobs of this batch's run it lists, and
+  // how many slots jobs of other runs occupy.
+  void OnWorkerStatus(const std::string& worker, int slots, const std::vector<std::int64_t>& jobs,
+                      int busy_with_others, FarmClock::time_point now);
+
+  // Leases pending jobs (lowest job first) to the live workers with free capacity.
+  std::vector<Dispatch> Schedule(FarmClock::time_point now);
+
+  enum class Verdict { kAccepted, kIgnored, kReissued, kFailed };
+  // A result for (job, attempt) from `worker`; `valid` = status OK and finite fitness.
+  Verdict OnResult(std::int64_t job, int attempt, const std::string& worker, bool valid,
+                   FarmClock::time_point now);
+
+  // Ends overdue leases (deadline, silent worker, missing from the worker's status).
+  std::vector<Reissue> Expire(FarmClock::time_point now);
+
+  bool AllDone() const { return done_ == jobs_.size(); }
+  std::size_t done() const { return done_; }
+  std::size_t size() const { return jobs_.size(); }
+  bool Failed(std::int64_t job) const;
+  int LiveWorkers(FarmClock::time_point now) const;
+  int attempts(std::int64_t job) const;  // issues so far
+
+ private:
+  struct Lease {
+    std::string worker;
+    int attempt = 0;
+    FarmClock::time_point dispatched, deadline;
+  };
+  struct Job {
+    bool done = false;
+    bool failed = false;
+    int next_attempt = 0;
+    int invalid = 0;
+    std::optional<Lease> lease;
+    std::set<std::string> excluded;  // workers that returned an invalid result for it
+  };
+  struct Worker {
+    int slots = 0;
+    int busy_with_others = 0;
+    int leased = 0;
+    FarmClock::time_point last_heard;
+  };
+  bool Alive(const Worker& w, FarmClock::time_point now) const {
+    return now - w.last_heard <= options_.worker_silence;
+  }
+  void EndLease(Job& job);
+
+  LeaseOptions options_;
+  std::map<std::int64_t, Job> jobs_;
+  std::map<std::string, Worker> workers_;
+  std::size_t done_ = 0;
+};
+
+}  // namespace ahhs::evolver

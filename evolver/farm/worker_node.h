@@ -1,0 +1,68 @@
+// The worker's protocol role (docs/protocol.md, "Evaluation farm"): takes the EVAL/REQUEST jobs
+// addressed to it, evaluates them one at a time through an injected function, publishes each
+// EVAL/RESULT, and announces itself on WORKER/STATUS about once a second and on every change.
+// One evaluation at a time per worker process: ODE's solver RNG is process-global, so a host
+// with several cores runs several worker processes (ahhs-worker --slots N).
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <set>
+#include <string>
+#include <tuple>
+
+#include <ahhs/eval_request_t.hpp>
+
+#include "bus/bus.h"
+#include "bus/typed.h"
+#include "evolver/farm/farm_protocol.h"
+
+namespace ahhs::evolver {
+
+struct WorkerCounters {
+  std::int64_t evaluations = 0;
+  std::int64_t refused = 0;     // requests of another protocol version
+  std::int64_t bad_requests = 0;  // addressed to us but unusable (bad scenario or genome)
+  bus::DecodeCounters requests;   // garbage on EVAL/REQUEST is counted here and dropped
+};
+
+class WorkerNode {
+ public:
+  // Evaluates one job; must fill status, fitness, cost, late_messages and message.
+  using EvaluateFn = std::function<EvalOutcome(const EvalJob&)>;
+
+  WorkerNode(bus::Bus* bus, std::string id, std::string host, EvaluateFn evaluate,
+             std::chrono::milliseconds status_period = std::chrono::milliseconds(1000));
+  ~WorkerNode();
+  WorkerNode(const WorkerNode&) = delete;
+  WorkerNode& operator=(const WorkerNode&) = delete;
+
+  // Serves until `stop()` is true (asked at least every 100 ms between evaluations).
+  void Serve(const std::function<bool()>& stop);
+  // One round: handle messages for at most `wait`, evaluate one queued job if any, heartbeat.
+  void Poll(std::chrono::microseconds wait);
+
+  const WorkerCounters& counters() const { return counters_; }
+  const std::string& id() const { return id_; }
+
+ private:
+  void OnRequest(const eval_request_t& msg);
+  void PublishStatus();
+
+  bus::Bus* bus_;
+  std::string id_, host_;
+  EvaluateFn evaluate_;
+  std::chrono::milliseconds status_period_;
+  std::chrono::steady_clock::time_point last_status_{};
+  std::deque<EvalJob> queue_;
+  std::int64_t current_job_ = -1;
+  std::string current_run_;
+  // (run, job, attempt) already taken: a repeated request is not evaluated twice.
+  std::set<std::tuple<std::string, std::int64_t, int>> seen_;
+  WorkerCounters counters_;
+  int subscription_ = -1;
+};
+
+}  // namespace ahhs::evolver

@@ -1,0 +1,142 @@
+#include "evolver/ga/ga.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+namespace ahhs::evolver {
+
+using modules::Genome;
+using modules::Rng;
+
+std::string CheckGaParams(const GaParams& p) {
+  if (p.population < 2) return "population must be at least 2";
+  if (p.generations < 1) return "generations must be at least 1";
+  if (p.elitism < 0 || p.elitism >= p.population)
+    return "elitism must be in [0, population - 1]";
+  if (!(p.mutation.gene_rate >= 0 && p.mutation.gene_rate <= 1))
+    return "mutation rate must be in [0, 1]";
+  if (!(p.mutation.max_change > 0 && p.mutation.max_change <= 1))
+    return "mutation max change must be in (0, 1]";
+  if (!(p.crossover_rate >= 0 && p.crossover_rate <= 1)) return "crossover rate must be in [0, 1]";
+  if (!(p.selection_epsilon > 0 && std::isfinite(p.selection_epsilon)))
+    return "selection epsilon must be positive";
+  return "";
+}
+
+std::uint64_t EvaluationSeed(std::uint64_t run_seed, int generation, int index) {
+  return modules::DeriveSeed(run_seed, {kEvalStream, static_cast<std::uint64_t>(generation),
+                                        static_cast<std::uint64_t>(index)});
+}
+
+std::vector<Genome> InitialPopulation(const modules::Shape& shape, const GaParams& params,
+                                      std::uint64_t run_seed) {
+  std::vector<Genome> population;
+  population.reserve(static_cast<std::size_t>(params.population));
+  for (int i = 0; i < params.population; ++i) {
+    // One stream per individual: individual i does not depend on the population size.
+    Rng rng(modules::DeriveSeed(run_seed, {kInitStream, static_cast<std::uint64_t>(i)}));
+    population.push_back(modules::RandomGenome(shape, rng));
+  }
+  return population;
+}
+
+int SelectProportional(const std::vector<double>& fitness, double epsilon, Rng& rng) {
+  if (fitness.empty()) throw std::invalid_argument("selection from an empty generation");
+  double lowest = fitness[0];
+  for (double f : fitness) {
+    if (!std::isfinite(f)) throw std::invalid_argument("selection needs finite fitness values");
+    lowest = std::min(lowest, f);
+  }
+  double total = 0;
+  for (double f : fitness) total += f - lowest + epsilon;
+  // Walk the wheel; the last individual takes any rounding remainder.
+  double ball = rng.Uniform() * total;
+  for (std::size_t i = 0; i + 1 < fitness.size(); ++i) {
+    ball -= fitness[i] - lowest + epsilon;
+    if (ball < 0) return static_cast<int>(i);
+  }
+  return static_cast<int>(fitness.size() - 1);
+}
+
+std::vector<int> RankByFitness(const std::vector<double>& fitness) {
+  std::vector<int> order(fitness.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return fitness[static_cast<std::size_t>(a)] > fitness[static_cast<std::size_t>(b)];
+  });
+  return order;
+}
+
+std::vector<Genome> Breed(const std::vector<Genome>& parents, const std::vector<double>& fitness,
+                          const GaParams& params, std::uint64_t run_seed, int next_generation) {
+  if (parents.size() != fitness.size() || parents.empty())
+    throw std::invalid_argument("Breed: parents and fitness differ in size");
+  Rng rng(modules::DeriveSeed(run_seed,
+                              {kBreedStream, static_cast<std::uint64_t>(next_generation)}));
+  std::vector<Genome> next;
+  next.reserve(static_cast<std::size_t>(params.population));
+  const std::vector<int> ranked = RankByFitness(fitness);
+  for (int e = 0; e < params.elitism && e < static_cast<int>(ranked.size()); ++e)
+    next.push_back(parents[static_cast<std::size_t>(ranked[static_cast<std::size_t>(e)])]);
+  while (static_cast<int>(next.size()) < params.population) {
+    const auto a = static_cast<std::size_t>(
+        SelectProportional(fitness, params.selection_epsilon, rng));
+    Genome child = parents[a];
+    if (rng.Bernoulli(params.crossover_rate)) {
+      const auto b = static_cast<std::size_t>(
+          SelectProportional(fitness, params.selection_epsilon, rng));
+      child = modules::Crossover(parents[a], parents[b], rng).first;
+    }
+    modules::Mutate(&child, params.mutation, rng);
+    next.push_back(std::move(child));
+  }
+  return next;
+}
+
+GenerationStats Summarise(const std::vector<double>& fitness) {
+  if (fitness.empty()) throw std::invalid_argument("Summarise: no fitness values");
+  GenerationStats s;
+  const std::vector<int> ranked = RankByFitness(fitness);
+  s.best_index = ranked.front();
+  s.best = fitness[static_cast<std::size_t>(ranked.front())];
+  s.worst = fitness[static_cast<std::size_t>(ranked.back())];
+  double sum = 0;
+  for (double f : fitness) sum += f;
+  s.mean = sum / static_cast<double>(fitness.size());
+  std::vector<double> sorted = fitness;
+  std::sort(sorted.begin(), sorted.end());
+  const std::size_t n = sorted.size();
+  s.median = n % 2 == 1 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  return s;
+}
+
+std::vector<GenerationStats> RunGa(const modules::Shape& shape, const GaParams& params,
+                                   std::uint64_t run_seed, FitnessEvaluator& evaluator,
+                                   std::vector<Genome>* final_population,
+                                   std::vector<double>* final_fitness) {
+  const std::string error = CheckGaParams(params);
+  if (!error.empty()) throw std::invalid_argument(error);
+  std::vector<GenerationStats> stats;
+  std::vector<Genome> population = InitialPopulation(shape, params, run_seed);
+  std::vector<double> fitness;
+  for (int g = 0; g < params.generations; ++g) {
+    if (g > 0) population = Breed(population, fitness, params, run_seed, g);
+    std::vector<EvaluationJob> jobs;
+    for (int i = 0; i < params.population; ++i)
+      jobs.push_back({g, i, &population[static_cast<std::size_t>(i)],
+                      EvaluationSeed(run_seed, g, i)});
+    const std::vector<Evaluation> results = evaluator.Evaluate(jobs);
+    if (results.size() != jobs.size())
+      throw std::runtime_error("the evaluator returned the wrong number of results");
+    fitness.clear();
+    for (const auto& r : results) fitness.push_back(r.fitness);
+    stats.push_back(Summarise(fitness));
+  }
+  if (final_population) *final_population = population;
+  if (final_fitness) *final_fitness = fitness;
+  return stats;
+}
+
+}  // namespace ahhs::evolver

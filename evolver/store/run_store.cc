@@ -1,0 +1,379 @@
+#include "evolver/store/run_store.h"
+
+#include <sqlite3.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "bus/channels.h"
+#include "modules/core/genome_json.h"
+
+namespace ahhs::evolver {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr const char* kDatabaseName = "run.sqlite";
+constexpr const char* kFormatName = "ahhs-run";
+
+// One prepared statement; finalised on scope exit.
+class Statement {
+ public:
+  Statement(sqlite3* db, const char* sql) : db_(db) {
+    if (sqlite3_prepare_v2(db, sql, -1, &stmt_, nullptr) != SQLITE_OK)
+      throw RunStoreError(std::string("database: ") + sqlite3_errmsg(db));
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+
+  Statement& Bind(int i, std::int64_t v) {
+    Check(sqlite3_bind_int64(stmt_, i, v));
+    return *this;
+  }
+  Statement& Bind(int i, double v) {
+    Check(sqlite3_bind_double(stmt_, i, v));
+    return *this;
+  }
+  Statement& Bind(int i, const std::string& v) {
+    Check(sqlite3_bind_text(stmt_, i, v.c_str(), static_cast<int>(v.size()), SQLITE_TRANSIENT));
+    return *this;
+  }
+  // True while there is a row.
+  bool Step() {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    throw RunStoreError(std::string("database: ") + sqlite3_errmsg(db_));
+  }
+  void Run() {
+    Step();
+    sqlite3_reset(stmt_);
+    sqlite3_clear_bindings(stmt_);
+  }
+  std::int64_t Int(int col) const { return sqlite3_column_int64(stmt_, col); }
+  double Real(int col) const { return sqlite3_column_double(stmt_, col); }
+  std::string Text(int col) const {
+    const unsigned char* t = sqlite3_column_text(stmt_, col);
+    return t ? reinterpret_cast<const char*>(t) : "";
+  }
+
+ private:
+  void Check(int rc) {
+    if (rc != SQLITE_OK) throw RunStoreError(std::string("database: ") + sqlite3_errmsg(db_));
+  }
+  sqlite3* db_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+// SQLite integers are signed 64-bit; seeds are unsigned: store the same bits.
+std::int64_t ToSql(std::uint64_t v) { return static_cast<std::int64_t>(v); }
+std::uint64_t FromSql(std::int64_t v) { return static_cast<std::uint64_t>(v); }
+
+// Writes a text file atomically: a reader sees the old file or the new one, never half of one.
+void WriteFileAtomically(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(tmp, ignored);
+      throw RunStoreError("cannot write " + path.string());
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) throw RunStoreError("cannot write " + path.string() + ": " + ec.message());
+}
+
+std::string FormatDouble(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+sqlite3* OpenDatabase(const fs::path& path, int flags) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(path.c_str(), &db, flags, nullptr) != SQLITE_OK) {
+    const std::string why = db ? sqlite3_errmsg(db) : "out of memory";
+    sqlite3_close(db);
+    throw RunStoreError(path.string() + ": cannot open the run database: " + why);
+  }
+  sqlite3_busy_timeout(db, 5000);
+  return db;
+}
+
+}  // namespace
+
+RunStore::RunStore(std::string dir, sqlite3* db) : dir_(std::move(dir)), db_(db) {}
+
+RunStore::~RunStore() { sqlite3_close(db_); }
+
+void RunStore::Exec(const char* sql) const {
+  char* error = nullptr;
+  if (sqlite3_exec(db_, sql, nullptr, nullptr, &error) != SQLITE_OK) {
+    const std::string why = error ? error : "unknown error";
+    sqlite3_free(error);
+    throw RunStoreError(dir_ + ": database: " + why);
+  }
+}
+
+std::unique_ptr<RunStore> RunStore::Create(const std::string& dir, const std::string& run_id,
+                                           std::uint64_t run_seed, const json& config,
+                                           bool overwrite) {
+  const fs::path root(dir);
+  std::error_code ec;
+  if (fs::exists(root, ec)) {
+    if (!fs::is_directory(root, ec)) throw RunStoreError(dir + " exists and is not a directory");
+    if (!fs::is_empty(root, ec)) {
+      if (!overwrite)
+        throw RunStoreError(dir + " already holds files; continue that run with --resume " + dir +
+                            ", or pass --overwrite to replace it");
+      for (const auto& entry : fs::directory_iterator(root)) fs::remove_all(entry.path(), ec);
+    }
+  }
+  fs::create_directories(root / "best", ec);
+  if (ec) throw RunStoreError("cannot create " + dir + ": " + ec.message());
+  sqlite3* db =
+      OpenDatabase(root / kDatabaseName, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  std::unique_ptr<RunStore> store(new RunStore(dir, db));
+  store->Exec(
+      "PRAGMA journal_mode=WAL;"
+      "PRAGMA synchronous=NORMAL;"
+      "CREATE TABLE run(key TEXT PRIMARY KEY, value TEXT NOT NULL);"
+      "CREATE TABLE sessions(session INTEGER PRIMARY KEY, started_utime INTEGER NOT NULL,"
+      "  command TEXT NOT NULL);"
+      "CREATE TABLE generations(generation INTEGER PRIMARY KEY, best REAL NOT NULL,"
+      "  mean REAL NOT NULL, median REAL NOT NULL, worst REAL NOT NULL,"
+      "  best_index INTEGER NOT NULL, wall_time REAL NOT NULL, session INTEGER NOT NULL,"
+      "  committed_utime INTEGER NOT NULL);"
+      "CREATE TABLE individuals(generation INTEGER NOT NULL, idx INTEGER NOT NULL,"
+      "  genome TEXT NOT NULL, genome_hash TEXT NOT NULL, elite INTEGER NOT NULL,"
+      "  eval_seed INTEGER NOT NULL, fitness REAL NOT NULL, cost REAL NOT NULL,"
+      "  worker TEXT NOT NULL, attempt INTEGER NOT NULL, wall_time REAL NOT NULL,"
+      "  message TEXT NOT NULL, PRIMARY KEY(generation, idx));");
+  {
+    store->Exec("BEGIN");
+    Statement put(db, "INSERT INTO run(key, value) VALUES(?, ?)");
+    put.Bind(1, std::string("format")).Bind(2, std::string(kFormatName)).Run();
+    put.Bind(1, std::string("format_version")).Bind(2, std::to_string(kFormatVersion)).Run();
+    put.Bind(1, std::string("run_id")).Bind(2, run_id).Run();
+    put.Bind(1, std::string("seed")).Bind(2, std::to_string(run_seed)).Run();
+    put.Bind(1, std::string("config")).Bind(2, config.dump()).Run();
+    put.Bind(1, std::string("created_utime")).Bind(2, std::to_string(bus::NowUtime())).Run();
+    store->Exec("COMMIT");
+  }
+  store->LoadRunTable();
+  store->Export();
+  return store;
+}
+
+std::unique_ptr<RunStore> RunStore::Open(const std::string& dir) {
+  const fs::path root(dir);
+  std::error_code ec;
+  if (!fs::is_directory(root, ec)) throw RunStoreError(dir + " is not a directory");
+  if (!fs::exists(root / kDatabaseName, ec))
+    throw RunStoreError(dir + " is not a run directory (no " + kDatabaseName + ")");
+  sqlite3* db = OpenDatabase(root / kDatabaseName, SQLITE_OPEN_READWRITE);
+  std::unique_ptr<RunStore> store(new RunStore(dir, db));
+  try {
+    Statement check(db, "PRAGMA quick_check");
+    if (!check.Step() || check.Text(0) != "ok")
+      throw RunStoreError("integrity check failed: " + check.Text(0));
+    store->LoadRunTable();
+  } catch (const RunStoreError& e) {
+    throw RunStoreError(dir + ": not a readable run database (" + e.what() + ")");
+  }
+  fs::create_directories(root / "best", ec);
+  return store;
+}
+
+void RunStore::LoadRunTable() {
+  json values = json::object();
+  Statement get(db_, "SELECT key, value FROM run");
+  while (get.Step()) values[get.Text(0)] = get.Text(1);
+  if (values.value("format", "") != kFormatName)
+    throw RunStoreError("the database is not an ahhs run");
+  if (values.value("format_version", "") != std::to_string(kFormatVersion))
+    throw RunStoreError("run format version " + values.value("format_version", "?") +
+                        " is not supported (this build reads version " +
+                        std::to_string(kFormatVersion) + ")");
+  run_id_ = values.value("run_id", "");
+  try {
+    run_seed_ = std::stoull(values.value("seed", ""));
+    config_ = json::parse(values.value("config", ""));
+  } catch (const std::exception& e) {
+    throw RunStoreError(std::string("run table: ") + e.what());
+  }
+}
+
+int RunStore::BeginSession(const std::string& command_line) {
+  Statement add(db_, "INSERT INTO sessions(started_utime, command) VALUES(?, ?)");
+  add.Bind(1, bus::NowUtime()).Bind(2, command_line).Run();
+  return static_cast<int>(sqlite3_last_insert_rowid(db_));
+}
+
+int RunStore::LastGeneration() const {
+  Statement last(db_, "SELECT COALESCE(MAX(generation), -1) FROM generations");
+  last.Step();
+  return static_cast<int>(last.Int(0));
+}
+
+std::vector<IndividualRecord> RunStore::LoadGeneration(int generation) const {
+  std::vector<IndividualRecord> out;
+  Statement get(db_,
+                "SELECT idx, genome, genome_hash, elite, eval_seed, fitness, cost, worker, "
+                "attempt, wall_time, message FROM individuals WHERE generation = ? ORDER BY idx");
+  get.Bind(1, static_cast<std::int64_t>(generation));
+  while (get.Step()) {
+    IndividualRecord r;
+    r.generation = generation;
+    r.index = static_cast<int>(get.Int(0));
+    try {
+      r.genome = modules::ParseGenome(get.Text(1), "generation " + std::to_string(generation) +
+                                                       " individual " + std::to_string(r.index));
+    } catch (const std::exception& e) {
+      throw RunStoreError(dir_ + ": " + e.what());
+    }
+    char hash[20];
+    std::snprintf(hash, sizeof hash, "%016llx",
+                  static_cast<unsigned long long>(modules::GenomeHash(r.genome)));
+    if (get.Text(2) != hash)
+      throw RunStoreError(dir_ + ": generation " + std::to_string(generation) + " individual " +
+                          std::to_string(r.index) + ": the genome does not match its hash");
+    r.elite = get.Int(3) != 0;
+    r.eval_seed = FromSql(get.Int(4));
+    r.evaluation.fitness = get.Real(5);
+    r.evaluation.cost = get.Real(6);
+    r.evaluation.worker = get.Text(7);
+    r.evaluation.attempt = static_cast<int>(get.Int(8));
+    r.evaluation.wall_time = get.Real(9);
+    r.evaluation.message = get.Text(10);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+std::vector<GenerationRecord> RunStore::LoadGenerationRecords() const {
+  std::vector<GenerationRecord> out;
+  Statement get(db_,
+                "SELECT generation, best, mean, median, worst, best_index, wall_time, session "
+                "FROM generations ORDER BY generation");
+  while (get.Step()) {
+    GenerationRecord r;
+    r.generation = static_cast<int>(get.Int(0));
+    r.stats.best = get.Real(1);
+    r.stats.mean = get.Real(2);
+    r.stats.median = get.Real(3);
+    r.stats.worst = get.Real(4);
+    r.stats.best_index = static_cast<int>(get.Int(5));
+    r.wall_time = get.Real(6);
+    r.session = static_cast<int>(get.Int(7));
+    out.push_back(r);
+  }
+  return out;
+}
+
+void RunStore::CommitGeneration(const GenerationRecord& record,
+                                const std::vector<IndividualRecord>& individuals) {
+  Exec("BEGIN IMMEDIATE");
+  try {
+    Statement gen(db_,
+                  "INSERT INTO generations(generation, best, mean, median, worst, best_index, "
+                  "wall_time, session, committed_utime) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?)");
+    gen.Bind(1, static_cast<std::int64_t>(record.generation))
+        .Bind(2, record.stats.best)
+        .Bind(3, record.stats.mean)
+        .Bind(4, record.stats.median)
+        .Bind(5, record.stats.worst)
+        .Bind(6, static_cast<std::int64_t>(record.stats.best_index))
+        .Bind(7, record.wall_time)
+        .Bind(8, static_cast<std::int64_t>(record.session))
+        .Bind(9, bus::NowUtime())
+        .Run();
+    Statement add(db_,
+                  "INSERT INTO individuals(generation, idx, genome, genome_hash, elite, "
+                  "eval_seed, fitness, cost, worker, attempt, wall_time, message) "
+                  "VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+    for (const auto& r : individuals) {
+      char hash[20];
+      std::snprintf(hash, sizeof hash, "%016llx",
+                    static_cast<unsigned long long>(modules::GenomeHash(r.genome)));
+      add.Bind(1, static_cast<std::int64_t>(record.generation))
+          .Bind(2, static_cast<std::int64_t>(r.index))
+          .Bind(3, modules::GenomeToJson(r.genome).dump())
+          .Bind(4, std::string(hash))
+          .Bind(5, static_cast<std::int64_t>(r.elite ? 1 : 0))
+          .Bind(6, ToSql(r.eval_seed))
+          .Bind(7, r.evaluation.fitness)
+          .Bind(8, r.evaluation.cost)
+          .Bind(9, r.evaluation.worker)
+          .Bind(10, static_cast<std::int64_t>(r.evaluation.attempt))
+          .Bind(11, r.evaluation.wall_time)
+          .Bind(12, r.evaluation.message)
+          .Run();
+    }
+    Exec("COMMIT");
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+  Export();
+}
+
+IndividualRecord RunStore::Best() const {
+  Statement best(db_,
+                 "SELECT generation, idx FROM individuals ORDER BY fitness DESC, generation, idx "
+                 "LIMIT 1");
+  if (!best.Step()) throw RunStoreError(dir_ + ": the run has no evaluated individual yet");
+  const int generation = static_cast<int>(best.Int(0));
+  const int index = static_cast<int>(best.Int(1));
+  for (auto& r : LoadGeneration(generation))
+    if (r.index == index) return r;
+  throw RunStoreError(dir_ + ": database changed while reading");
+}
+
+void RunStore::Export() const {
+  const fs::path root(dir_);
+  std::ostringstream csv;
+  csv << "generation,best,mean,median,worst,best_index,wall_time_s\n";
+  const auto generations = LoadGenerationRecords();
+  for (const auto& g : generations)
+    csv << g.generation << ',' << FormatDouble(g.stats.best) << ','
+        << FormatDouble(g.stats.mean) << ',' << FormatDouble(g.stats.median) << ','
+        << FormatDouble(g.stats.worst) << ',' << g.stats.best_index << ','
+        << FormatDouble(g.wall_time) << '\n';
+  WriteFileAtomically(root / "generations.csv", csv.str());
+  std::error_code ec;
+  fs::create_directories(root / "best", ec);
+  auto meta = [&](const IndividualRecord& r) {
+    return json{{"run", run_id_},
+                {"generation", r.generation},
+                {"individual", r.index},
+                {"fitness", r.evaluation.fitness},
+                {"cost", r.evaluation.cost},
+                {"eval_seed", r.eval_seed},
+                {"config", config_}};
+  };
+  for (const auto& g : generations) {
+    char name[32];
+    std::snprintf(name, sizeof name, "gen-%04d.json", g.generation);
+    const fs::path path = root / "best" / name;
+    if (fs::exists(path, ec)) continue;  // generations never change once committed
+    for (const auto& r : LoadGeneration(g.generation))
+      if (r.index == g.stats.best_index) modules::SaveGenomeFile(path, r.genome, meta(r));
+  }
+  if (!generations.empty()) {
+    const IndividualRecord best = Best();
+    modules::SaveGenomeFile((root / "best.json").string(), best.genome, meta(best));
+  }
+}
+
+}  // namespace ahhs::evolver

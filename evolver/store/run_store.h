@@ -1,0 +1,102 @@
+// The run directory of one evolution (docs/evolution.md, "Run directory"):
+//   run.sqlite            SQLite in WAL mode: run config and seeds, every individual of every
+//                         generation (genome, fitness, evaluation seed, worker, timings), the
+//                         statistics of every generation, the sessions (start and resumes).
+//                         One transaction per generation: a killed run loses at most the
+//                         generation in progress and resumes from the last committed one.
+//   generations.csv       generation, best, mean, median, worst, wall time (s)
+//   best/gen-NNNN.json    the best genome of every generation (docs/genome.md)
+//   best.json             the best genome of the run so far
+// The CSV and JSON files are exports of the database, rewritten atomically after each commit
+// (and on resume), so they never disagree with it for long and are never half-written.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "evolver/ga/ga.h"
+#include "modules/core/genome.h"
+
+struct sqlite3;
+
+namespace ahhs::evolver {
+
+// Thrown for every problem with a run directory; what() is a message for the user.
+class RunStoreError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct IndividualRecord {
+  int generation = 0;
+  int index = 0;
+  modules::Genome genome;
+  bool elite = false;  // copied unchanged from the previous generation
+  std::uint64_t eval_seed = 0;
+  Evaluation evaluation;
+};
+
+struct GenerationRecord {
+  int generation = 0;
+  GenerationStats stats;
+  double wall_time = 0;  // seconds from the first job issued to the last result
+  int session = 0;
+};
+
+class RunStore {
+ public:
+  static constexpr int kFormatVersion = 1;
+
+  // Makes a new run directory. Refuses an existing non-empty directory unless `overwrite`, in
+  // which case the old run's files are removed first. `config` is stored verbatim.
+  static std::unique_ptr<RunStore> Create(const std::string& dir, const std::string& run_id,
+                                          std::uint64_t run_seed, const nlohmann::json& config,
+                                          bool overwrite);
+  // Opens an existing run (to resume or to read). Checks that it is a run directory of this
+  // format and that its database is intact.
+  static std::unique_ptr<RunStore> Open(const std::string& dir);
+  ~RunStore();
+  RunStore(const RunStore&) = delete;
+  RunStore& operator=(const RunStore&) = delete;
+
+  const std::string& dir() const { return dir_; }
+  const std::string& run_id() const { return run_id_; }
+  std::uint64_t run_seed() const { return run_seed_; }
+  const nlohmann::json& config() const { return config_; }
+
+  // Records a new session (the first start or a resume) and returns its number (1, 2, ...).
+  int BeginSession(const std::string& command_line);
+
+  // The highest committed generation, -1 when none.
+  int LastGeneration() const;
+  std::vector<IndividualRecord> LoadGeneration(int generation) const;
+  std::vector<GenerationRecord> LoadGenerationRecords() const;
+
+  // Stores a whole generation in one transaction, then rewrites the exports.
+  void CommitGeneration(const GenerationRecord& record,
+                        const std::vector<IndividualRecord>& individuals);
+
+  // Rewrites generations.csv, best/gen-NNNN.json and best.json from the database.
+  void Export() const;
+
+  // The best individual of the run so far (highest fitness; earliest on ties).
+  IndividualRecord Best() const;
+
+ private:
+  RunStore(std::string dir, sqlite3* db);
+  void Exec(const char* sql) const;
+  void LoadRunTable();
+
+  std::string dir_;
+  sqlite3* db_ = nullptr;
+  std::string run_id_;
+  std::uint64_t run_seed_ = 0;
+  nlohmann::json config_;
+};
+
+}  // namespace ahhs::evolver

@@ -1,0 +1,226 @@
+// The evaluation farm in one process over memq://: FarmEvaluator and WorkerNodes on one bus
+// (the workers are polled from the evaluator's loop). Results must not depend on how many
+// workers served, which failed, or what else was on the bus.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+
+#include "bus/channels.h"
+#include "bus/lcm_bus.h"
+#include "evolver/farm/farm_codec.h"
+#include "evolver/farm/farm_evaluator.h"
+#include "evolver/farm/worker_node.h"
+#include "evolver/ga/ga.h"
+
+using namespace ahhs;
+using namespace ahhs::evolver;
+
+namespace {
+
+// A deterministic stand-in for an episode: depends on every gene and the seed.
+double FakeFitness(const modules::Genome& g, std::uint64_t seed) {
+  return static_cast<double>(modules::GenomeHash(g) % 100003) * 1e-5 +
+         static_cast<double>(seed % 1009) * 1e-9;
+}
+
+EvalOutcome Good(const EvalJob& job) {
+  EvalOutcome o;
+  o.fitness = FakeFitness(job.genome, job.seed);
+  o.cost = 1;
+  return o;
+}
+
+struct Batch {
+  std::vector<modules::Genome> genomes;
+  std::vector<EvaluationJob> jobs;
+  explicit Batch(int n) {
+    GaParams p;
+    p.population = n;
+    genomes = InitialPopulation({modules::Variant::kAhhs2, 3, 5, 10, 2}, p, 77);
+    for (int i = 0; i < n; ++i)
+      jobs.push_back({2, i, &genomes[static_cast<std::size_t>(i)], EvaluationSeed(77, 2, i)});
+  }
+  void CheckResults(const std::vector<Evaluation>& results) const {
+    REQUIRE(results.size() == jobs.size());
+    for (std::size_t k = 0; k < jobs.size(); ++k)
+      CHECK(results[k].fitness == FakeFitness(*jobs[k].genome, jobs[k].seed));
+  }
+};
+
+FarmOptions Options() {
+  FarmOptions o;
+  o.run = "test-run/s1";
+  o.config.kind = sim::ScenarioKind::kPendulum;
+  o.config.num_modules = 2;
+  o.population = 100;
+  o.lease.job_deadline = std::chrono::milliseconds(2000);
+  o.lease.worker_silence = std::chrono::milliseconds(300);
+  o.lease.status_grace = std::chrono::milliseconds(200);
+  o.no_worker_timeout = std::chrono::milliseconds(1500);
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("one or three workers give the same results as evaluating in place") {
+  for (int n_workers : {1, 3}) {
+    bus::LcmBus bus("memq://");
+    std::vector<std::unique_ptr<WorkerNode>> workers;
+    for (int w = 0; w < n_workers; ++w)
+      workers.push_back(std::make_unique<WorkerNode>(&bus, "w" + std::to_string(w), "host", Good,
+                                                     std::chrono::milliseconds(50)));
+    FarmEvaluator::Hooks hooks;
+    std::size_t last_progress = 0;
+    hooks.interrupted = [&] {
+      for (auto& w : workers) w->Poll(std::chrono::microseconds(0));
+      return false;
+    };
+    hooks.progress = [&](std::size_t done, std::size_t total) {
+      CHECK(done > last_progress);
+      CHECK(total == 30);
+      last_progress = done;
+    };
+    FarmEvaluator farm(&bus, Options(), hooks);
+    Batch batch(30);
+    const auto results = farm.Evaluate(batch.jobs);
+    batch.CheckResults(results);
+    CHECK(last_progress == 30);
+    CHECK(farm.counters().reissued == 0);
+    std::int64_t total = 0;
+    for (auto& w : workers) total += w->counters().evaluations;
+    CHECK(total == 30);
+    if (n_workers == 3)
+      for (auto& w : workers) CHECK(w->counters().evaluations > 0);  // the load was spread
+  }
+}
+
+TEST_CASE("a worker that returns NaN gets its jobs re-issued elsewhere, and it is reported") {
+  bus::LcmBus bus("memq://");
+  auto nan_fitness = [](const EvalJob& job) {
+    EvalOutcome o = Good(job);
+    o.fitness = std::numeric_limits<double>::quiet_NaN();
+    return o;
+  };
+  WorkerNode bad(&bus, "bad", "host", nan_fitness, std::chrono::milliseconds(50));
+  WorkerNode good(&bus, "good", "host", Good, std::chrono::milliseconds(50));
+  std::vector<std::string> reports;
+  FarmEvaluator::Hooks hooks;
+  hooks.interrupted = [&] {
+    bad.Poll(std::chrono::microseconds(0));
+    good.Poll(std::chrono::microseconds(0));
+    return false;
+  };
+  hooks.report = [&](const std::string& s) { reports.push_back(s); };
+  FarmEvaluator farm(&bus, Options(), hooks);
+  Batch batch(12);
+  const auto results = farm.Evaluate(batch.jobs);
+  batch.CheckResults(results);
+  for (const auto& r : results) CHECK(r.worker == "good");
+  CHECK(bad.counters().evaluations > 0);
+  CHECK(farm.counters().invalid_results == bad.counters().evaluations);
+  REQUIRE_FALSE(reports.empty());
+  CHECK_THAT(reports.front(), Catch::Contains("non-finite") && Catch::Contains("bad"));
+}
+
+TEST_CASE("a worker that dies mid-batch: its jobs are re-issued, results unchanged") {
+  bus::LcmBus bus("memq://");
+  WorkerNode dying(&bus, "dying", "host", Good, std::chrono::milliseconds(50));
+  WorkerNode steady(&bus, "steady", "host", Good, std::chrono::milliseconds(50));
+  FarmEvaluator::Hooks hooks;
+  hooks.interrupted = [&] {
+    // "dying" evaluates two jobs, then never answers again (its queue is lost with it).
+    if (dying.counters().evaluations < 2) dying.Poll(std::chrono::microseconds(0));
+    steady.Poll(std::chrono::microseconds(0));
+    return false;
+  };
+  FarmEvaluator farm(&bus, Options(), hooks);
+  Batch batch(20);
+  batch.CheckResults(farm.Evaluate(batch.jobs));
+  CHECK(dying.counters().evaluations == 2);
+  CHECK(farm.counters().reissued >= 1);
+}
+
+TEST_CASE("foreign protocol versions, garbage and other runs' results are ignored") {
+  bus::LcmBus bus("memq://");
+  WorkerNode good(&bus, "good", "host", Good, std::chrono::milliseconds(50));
+  std::vector<std::string> reports;
+  FarmEvaluator::Hooks hooks;
+  int loops = 0;
+  hooks.interrupted = [&] {
+    if (++loops % 3 == 0) {
+      // A worker of a future protocol version announces itself.
+      WorkerStatus foreign;
+      foreign.protocol_version = 99;
+      foreign.worker = "future";
+      foreign.host = "elsewhere";
+      bus::PublishTyped(bus, bus::kWorkerStatusChannel, StatusMessage(foreign));
+      // Garbage on every farm channel.
+      const std::uint8_t junk[] = {1, 2, 3, 4, 5, 6, 7, 8, 9};
+      for (const char* ch :
+           {bus::kEvalRequestChannel, bus::kEvalResultChannel, bus::kWorkerStatusChannel})
+        bus.Publish(ch, junk, sizeof junk);
+      // A result of another run for a job id of ours.
+      EvalOutcome stray;
+      stray.run = "other/s1";
+      stray.job = 200;
+      stray.fitness = -5;
+      stray.worker = "good";
+      bus::PublishTyped(bus, bus::kEvalResultChannel, ResultMessage(stray));
+    }
+    good.Poll(std::chrono::microseconds(0));
+    return false;
+  };
+  hooks.report = [&](const std::string& s) { reports.push_back(s); };
+  FarmEvaluator farm(&bus, Options(), hooks);
+  Batch batch(10);
+  batch.CheckResults(farm.Evaluate(batch.jobs));
+  CHECK(farm.counters().results.dropped > 0);
+  CHECK(farm.counters().statuses.dropped > 0);
+  CHECK(good.counters().requests.dropped > 0);
+  REQUIRE(reports.size() == 1);  // said once, not per status
+  CHECK_THAT(reports[0], Catch::Contains("refused worker future") && Catch::Contains("99"));
+  CHECK(farm.workers().count("future") == 0);
+}
+
+TEST_CASE("a worker refuses a request of another protocol version and says why") {
+  bus::LcmBus bus("memq://");
+  WorkerNode worker(&bus, "w", "host", Good);
+  std::vector<eval_result_t> results;
+  bus::SubscribeTyped<eval_result_t>(
+      bus, bus::kEvalResultChannel,
+      [&](const std::string&, const eval_result_t& r) { results.push_back(r); });
+  Batch batch(1);
+  EvalJob job;
+  job.protocol_version = 2;
+  job.run = "r";
+  job.job = 5;
+  job.worker = "w";
+  job.config.kind = sim::ScenarioKind::kPendulum;
+  job.config.num_modules = 2;
+  job.genome = batch.genomes[0];
+  bus::PublishTyped(bus, bus::kEvalRequestChannel, RequestMessage(job));
+  worker.Poll(std::chrono::milliseconds(10));
+  bus.Handle(std::chrono::milliseconds(0));
+  REQUIRE(results.size() == 1);
+  CHECK(results[0].status == eval_result_t::REFUSED);
+  CHECK_THAT(results[0].message, Catch::Contains("version"));
+  CHECK(worker.counters().refused == 1);
+  CHECK(worker.counters().evaluations == 0);
+}
+
+TEST_CASE("without any worker the farm gives up with a clear error; Ctrl-C interrupts") {
+  bus::LcmBus bus("memq://");
+  {
+    FarmEvaluator farm(&bus, Options(), {});
+    Batch batch(3);
+    CHECK_THROWS_WITH(farm.Evaluate(batch.jobs), Catch::Contains("no evaluation worker"));
+  }
+  {
+    FarmEvaluator::Hooks hooks;
+    int loops = 0;
+    hooks.interrupted = [&] { return ++loops > 5; };
+    FarmEvaluator farm(&bus, Options(), hooks);
+    Batch batch(3);
+    CHECK_THROWS_AS(farm.Evaluate(batch.jobs), FarmInterrupted);
+  }
+}

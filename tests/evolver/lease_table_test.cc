@@ -1,0 +1,138 @@
+// The farm's lease bookkeeping against a fake clock.
+#include <catch2/catch.hpp>
+
+#include "evolver/farm/lease_table.h"
+
+using namespace ahhs::evolver;
+using std::chrono::milliseconds;
+
+namespace {
+
+LeaseOptions Options() {
+  LeaseOptions o;
+  o.job_deadline = milliseconds(1000);
+  o.worker_silence = milliseconds(500);
+  o.status_grace = milliseconds(200);
+  o.prefetch = 1;
+  o.max_invalid = 3;
+  return o;
+}
+
+const FarmClock::time_point t0{};
+
+}  // namespace
+
+TEST_CASE("jobs go to live workers up to slots + prefetch, lowest job first") {
+  LeaseTable t(Options());
+  for (int j = 0; j < 10; ++j) t.AddJob(j);
+  CHECK(t.Schedule(t0).empty());  // nobody to give them to
+  t.OnWorkerStatus("a", 1, {}, 0, t0);
+  t.OnWorkerStatus("b", 2, {}, 0, t0);
+  const auto d = t.Schedule(t0);
+  REQUIRE(d.size() == 5);  // a: 1 + 1, b: 2 + 1
+  for (std::size_t k = 0; k < d.size(); ++k) {
+    CHECK(d[k].job == static_cast<std::int64_t>(k));
+    CHECK(d[k].attempt == 0);
+  }
+  CHECK(std::count_if(d.begin(), d.end(), [](const Dispatch& x) { return x.worker == "b"; }) == 3);
+  CHECK(t.Schedule(t0).empty());  // all full
+  // A worker busy with another run's jobs has less room.
+  LeaseTable u(Options());
+  u.AddJob(0);
+  u.AddJob(1);
+  u.OnWorkerStatus("c", 1, {}, 2, t0);
+  CHECK(u.Schedule(t0).empty());
+}
+
+TEST_CASE("a result frees the slot; duplicates and unknown jobs are ignored") {
+  LeaseTable t(Options());
+  t.AddJob(0);
+  t.AddJob(1);
+  t.AddJob(2);
+  t.OnWorkerStatus("a", 1, {}, 0, t0);
+  REQUIRE(t.Schedule(t0).size() == 2);
+  CHECK(t.OnResult(0, 0, "a", true, t0) == LeaseTable::Verdict::kAccepted);
+  CHECK(t.OnResult(0, 0, "a", true, t0) == LeaseTable::Verdict::kIgnored);
+  CHECK(t.OnResult(7, 0, "a", true, t0) == LeaseTable::Verdict::kIgnored);
+  CHECK(t.OnResult(2, 5, "a", true, t0) == LeaseTable::Verdict::kIgnored);  // never issued
+  const auto d = t.Schedule(t0);
+  REQUIRE(d.size() == 1);
+  CHECK(d[0].job == 2);
+  CHECK(t.done() == 1);
+}
+
+TEST_CASE("an expired lease is re-issued with the next attempt; the first valid result wins") {
+  LeaseTable t(Options());
+  t.AddJob(0);
+  t.OnWorkerStatus("a", 1, {}, 0, t0);
+  REQUIRE(t.Schedule(t0).size() == 1);
+  // The worker keeps listing the job (it is slow), so only the deadline ends the lease.
+  t.OnWorkerStatus("a", 1, {0}, 0, t0 + milliseconds(900));
+  CHECK(t.Expire(t0 + milliseconds(900)).empty());
+  t.OnWorkerStatus("a", 1, {0}, 0, t0 + milliseconds(1000));
+  const auto r = t.Expire(t0 + milliseconds(1000));
+  REQUIRE(r.size() == 1);
+  CHECK(r[0].worker == "a");
+  t.OnWorkerStatus("b", 1, {}, 0, t0 + milliseconds(1000));
+  const auto d = t.Schedule(t0 + milliseconds(1000));
+  REQUIRE(d.size() == 1);
+  CHECK(d[0].attempt == 1);
+  // The slow first attempt's result arrives first: it is valid, so it wins.
+  CHECK(t.OnResult(0, 0, "a", true, t0 + milliseconds(1100)) == LeaseTable::Verdict::kAccepted);
+  CHECK(t.OnResult(0, 1, d[0].worker, true, t0 + milliseconds(1200)) ==
+        LeaseTable::Verdict::kIgnored);
+  CHECK(t.AllDone());
+}
+
+TEST_CASE("a silent worker's jobs are re-issued") {
+  LeaseTable t(Options());
+  t.AddJob(0);
+  t.AddJob(1);
+  t.OnWorkerStatus("a", 1, {}, 0, t0);
+  REQUIRE(t.Schedule(t0).size() == 2);
+  CHECK(t.Expire(t0 + milliseconds(400)).empty());
+  CHECK(t.Expire(t0 + milliseconds(600)).size() == 2);
+  CHECK(t.LiveWorkers(t0 + milliseconds(600)) == 0);
+  t.OnWorkerStatus("b", 1, {}, 0, t0 + milliseconds(600));
+  const auto d = t.Schedule(t0 + milliseconds(600));
+  REQUIRE(d.size() == 2);
+  CHECK(d[0].worker == "b");
+  CHECK(d[0].attempt == 1);
+}
+
+TEST_CASE("a job missing from the worker's status after the grace time was lost") {
+  LeaseTable t(Options());
+  t.AddJob(0);
+  t.OnWorkerStatus("a", 1, {}, 0, t0);
+  REQUIRE(t.Schedule(t0).size() == 1);
+  // A status right after the dispatch may predate the request: no verdict yet.
+  t.OnWorkerStatus("a", 1, {}, 0, t0 + milliseconds(100));
+  CHECK(t.Expire(t0 + milliseconds(100)).empty());
+  t.OnWorkerStatus("a", 1, {}, 0, t0 + milliseconds(300));
+  CHECK(t.Expire(t0 + milliseconds(300)).size() == 1);
+  CHECK(t.Schedule(t0 + milliseconds(300)).at(0).attempt == 1);
+}
+
+TEST_CASE("an invalid result sends the job elsewhere; too many fail it") {
+  LeaseTable t(Options());
+  t.AddJob(0);
+  t.OnWorkerStatus("bad", 1, {}, 0, t0);
+  t.OnWorkerStatus("good", 1, {}, 0, t0);
+  auto d = t.Schedule(t0);
+  REQUIRE(d.size() == 1);
+  const std::string first = d[0].worker;
+  CHECK(t.OnResult(0, 0, first, false, t0) == LeaseTable::Verdict::kReissued);
+  d = t.Schedule(t0);
+  REQUIRE(d.size() == 1);
+  CHECK(d[0].worker != first);
+  CHECK(d[0].attempt == 1);
+  // An invalid answer to an attempt that is no longer leased does not count twice.
+  CHECK(t.OnResult(0, 0, first, false, t0) == LeaseTable::Verdict::kIgnored);
+  CHECK(t.OnResult(0, 1, d[0].worker, false, t0) == LeaseTable::Verdict::kReissued);
+  // Both workers failed it: it may go back to either.
+  d = t.Schedule(t0);
+  REQUIRE(d.size() == 1);
+  CHECK(t.OnResult(0, 2, d[0].worker, false, t0) == LeaseTable::Verdict::kFailed);
+  CHECK(t.Failed(0));
+  CHECK(t.Schedule(t0).empty());
+}

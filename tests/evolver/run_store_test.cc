@@ -1,0 +1,232 @@
+// The run store: what is committed comes back bit for bit; a run directory is never
+// overwritten unless asked; damaged or foreign directories give clear errors; the exports
+// match the database. And RunEvolution resumed after a stop equals an uninterrupted run.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "evolver/evolve/evolution.h"
+#include "evolver/store/run_store.h"
+#include "modules/core/genome_json.h"
+
+using namespace ahhs;
+namespace fs = std::filesystem;
+using evolver::RunStore;
+using evolver::RunStoreError;
+
+namespace {
+
+struct TempDir {
+  TempDir() {
+    char tmpl[] = "/tmp/ahhs-store-XXXXXX";
+    path = mkdtemp(tmpl);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  std::string path;
+};
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A cheap deterministic fitness of (genome, seed): the controller is not run, but every
+// field and the seed matter, so any difference in genomes or seeds shows.
+class HashFitness : public evolver::FitnessEvaluator {
+ public:
+  std::vector<evolver::Evaluation> Evaluate(
+      const std::vector<evolver::EvaluationJob>& jobs) override {
+    std::vector<evolver::Evaluation> out;
+    for (const auto& j : jobs) {
+      double s = 0;
+      for (const auto& h : j.genome->hormones) s += h.alpha - 0.3 * h.mu + 0.1 * h.diffusion;
+      evolver::Evaluation e;
+      e.fitness = s + static_cast<double>(j.seed % 97) * 1e-4;
+      e.cost = -s;
+      e.worker = "test";
+      out.push_back(e);
+    }
+    ++batches;
+    return out;
+  }
+  int batches = 0;
+};
+
+evolver::EvolveConfig SmallConfig() {
+  evolver::EvolveConfig c;
+  c.scenario.kind = sim::ScenarioKind::kPendulum;
+  c.scenario.num_modules = 2;
+  c.hormones = 3;
+  c.rules = 4;
+  c.ga.population = 8;
+  c.ga.generations = 6;
+  c.seed = 123;
+  return c;
+}
+
+std::string DumpRun(const RunStore& store) {
+  std::ostringstream s;
+  for (int g = 0; g <= store.LastGeneration(); ++g)
+    for (const auto& r : store.LoadGeneration(g))
+      s << g << ' ' << r.index << ' ' << modules::GenomeHash(r.genome) << ' ' << r.eval_seed
+        << ' ' << std::hexfloat << r.evaluation.fitness << ' ' << r.elite << '\n';
+  return s.str();
+}
+
+}  // namespace
+
+TEST_CASE("a committed generation comes back bit for bit, with its exports") {
+  TempDir tmp;
+  const std::string dir = tmp.path + "/run";
+  const auto config = SmallConfig();
+  auto store = RunStore::Create(dir, "run-1", 123, evolver::ConfigToJson(config), false);
+  CHECK(store->LastGeneration() == -1);
+  CHECK(store->BeginSession("test") == 1);
+  HashFitness f;
+  REQUIRE(evolver::RunEvolution(*store, config, f, 1));
+  CHECK(f.batches == 6);
+  CHECK(store->LastGeneration() == 5);
+  const auto gen3 = store->LoadGeneration(3);
+  REQUIRE(gen3.size() == 8);
+  CHECK(gen3[0].elite);
+  CHECK_FALSE(gen3[1].elite);
+  CHECK(gen3[2].eval_seed == evolver::EvaluationSeed(123, 3, 2));
+  CHECK(gen3[2].evaluation.worker == "test");
+
+  // Reopen: config and seed survive; the records are identical.
+  const std::string before = DumpRun(*store);
+  store.reset();
+  auto reopened = RunStore::Open(dir);
+  CHECK(reopened->run_id() == "run-1");
+  CHECK(reopened->run_seed() == 123);
+  CHECK(evolver::ConfigToJson(evolver::ConfigFromJson(reopened->config())) ==
+        evolver::ConfigToJson(config));
+  CHECK(DumpRun(*reopened) == before);
+
+  // Exports: one CSV row per generation, a best genome per generation, best.json = run best.
+  const std::string csv = ReadFile(dir + "/generations.csv");
+  CHECK(std::count(csv.begin(), csv.end(), '\n') == 7);
+  CHECK(csv.rfind("generation,best,mean,median,worst,best_index,wall_time_s\n", 0) == 0);
+  for (int g = 0; g < 6; ++g) {
+    char name[64];
+    std::snprintf(name, sizeof name, "%s/best/gen-%04d.json", dir.c_str(), g);
+    REQUIRE(fs::exists(name));
+    const auto records = reopened->LoadGenerationRecords();
+    const auto best = modules::LoadGenomeFile(name);
+    CHECK(modules::GenomeHash(best) ==
+          modules::GenomeHash(
+              reopened->LoadGeneration(g)[static_cast<std::size_t>(records[g].stats.best_index)]
+                  .genome));
+  }
+  const auto best = reopened->Best();
+  CHECK(modules::GenomeHash(modules::LoadGenomeFile(dir + "/best.json")) ==
+        modules::GenomeHash(best.genome));
+  for (const auto& g : reopened->LoadGenerationRecords())
+    CHECK(g.stats.best <= best.evaluation.fitness);
+}
+
+TEST_CASE("a run stopped after any generation and resumed equals the uninterrupted run") {
+  TempDir tmp;
+  const auto config = SmallConfig();
+  HashFitness f;
+  auto whole = RunStore::Create(tmp.path + "/whole", "w", 123, evolver::ConfigToJson(config),
+                                false);
+  evolver::RunEvolution(*whole, config, f, 1);
+  const std::string expected = DumpRun(*whole);
+
+  for (int stop_after : {0, 2, 4}) {
+    const std::string dir = tmp.path + "/part" + std::to_string(stop_after);
+    {
+      auto part = RunStore::Create(dir, "p", 123, evolver::ConfigToJson(config), false);
+      CHECK(part->BeginSession("start") == 1);
+      evolver::EvolutionHooks hooks;
+      int committed = 0;
+      hooks.on_generation = [&](const evolver::GenerationRecord&) { ++committed; };
+      hooks.stop = [&] { return committed > stop_after; };
+      CHECK_FALSE(evolver::RunEvolution(*part, config, f, 1, hooks));
+      CHECK(part->LastGeneration() == stop_after);
+    }
+    auto resumed = RunStore::Open(dir);
+    CHECK(resumed->BeginSession("resume") == 2);
+    CHECK(evolver::RunEvolution(*resumed, evolver::ConfigFromJson(resumed->config()), f, 2));
+    CHECK(DumpRun(*resumed) == expected);
+  }
+}
+
+TEST_CASE("an existing run directory is never overwritten unless asked") {
+  TempDir tmp;
+  const std::string dir = tmp.path + "/run";
+  const auto json = evolver::ConfigToJson(SmallConfig());
+  RunStore::Create(dir, "a", 1, json, false);
+  try {
+    RunStore::Create(dir, "b", 1, json, false);
+    FAIL("no error");
+  } catch (const RunStoreError& e) {
+    CHECK_THAT(e.what(), Catch::Contains("--resume") && Catch::Contains("--overwrite"));
+  }
+  CHECK(RunStore::Open(dir)->run_id() == "a");
+  CHECK(RunStore::Create(dir, "b", 1, json, true)->run_id() == "b");
+  // A file where the directory should be.
+  std::ofstream(tmp.path + "/file") << "x";
+  CHECK_THROWS_AS(RunStore::Create(tmp.path + "/file", "c", 1, json, false), RunStoreError);
+}
+
+TEST_CASE("opening something that is not an intact run gives a clear error") {
+  TempDir tmp;
+  auto message = [](const std::string& dir) {
+    try {
+      RunStore::Open(dir);
+    } catch (const RunStoreError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK_THAT(message(tmp.path + "/missing"), Catch::Contains("not a directory"));
+  fs::create_directories(tmp.path + "/empty");
+  CHECK_THAT(message(tmp.path + "/empty"), Catch::Contains("not a run directory"));
+  fs::create_directories(tmp.path + "/garbage");
+  std::ofstream(tmp.path + "/garbage/run.sqlite") << std::string(5000, 'x');
+  CHECK_THAT(message(tmp.path + "/garbage"), Catch::Contains("not a readable run database"));
+  // A real run whose database is then damaged in the middle.
+  const std::string dir = tmp.path + "/damaged";
+  {
+    auto store = RunStore::Create(dir, "d", 1, evolver::ConfigToJson(SmallConfig()), false);
+    HashFitness f;
+    evolver::RunEvolution(*store, SmallConfig(), f, 1);
+  }
+  {
+    std::fstream db(dir + "/run.sqlite", std::ios::in | std::ios::out | std::ios::binary);
+    db.seekp(0, std::ios::end);
+    const auto size = static_cast<long>(db.tellp());
+    REQUIRE(size > 12000);
+    db.seekp(0);
+    db << std::string(200, '\0');  // the header
+  }
+  CHECK_THAT(message(dir), Catch::Contains("not a readable run database"));
+}
+
+TEST_CASE("run configs round-trip through JSON and bad ones are refused") {
+  auto c = SmallConfig();
+  c.variant = modules::Variant::kAhhs1;
+  c.scenario.duration = 12.5;
+  c.ga.crossover_rate = 0.25;
+  const auto json = evolver::ConfigToJson(c);
+  CHECK(evolver::ConfigToJson(evolver::ConfigFromJson(json)) == json);
+  auto bad = json;
+  bad["population"] = 1;
+  CHECK_THROWS_WITH(evolver::ConfigFromJson(bad), Catch::Contains("population"));
+  bad = json;
+  bad.erase("rules");
+  CHECK_THROWS_WITH(evolver::ConfigFromJson(bad), Catch::Contains("rules"));
+  bad = json;
+  bad["variant"] = "ahhs3";
+  CHECK_THROWS_WITH(evolver::ConfigFromJson(bad), Catch::Contains("variant"));
+}

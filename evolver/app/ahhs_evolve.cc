@@ -67,12 +67,14 @@ class Progress {
     const auto now = Clock::now();
     if (done != total && now - last_draw_ < std::chrono::milliseconds(100)) return;
     last_draw_ = now;
-    const double gens_done = (generation - first_) + static_cast<double>(done) / static_cast<double>(total);
+    const double gens_done =
+        (generation - first_) + static_cast<double>(done) / static_cast<double>(total);
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const double eta =
         gens_done > 0 ? elapsed / gens_done * (generations_ - first_ - gens_done) : NAN;
     const int width = 30;
-    const int filled = static_cast<int>(width * static_cast<double>(done) / static_cast<double>(total));
+    const int filled =
+        static_cast<int>(width * static_cast<double>(done) / static_cast<double>(total));
     std::string bar(static_cast<std::size_t>(filled), '#');
     bar.resize(width, '.');
     std::printf("\r\033[K generation %d/%d [%s] %zu/%zu  ETA %s%s", generation, generations_,
@@ -151,8 +153,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--hormones", hormones, "hormones per controller")->capture_default_str();
   app.add_option("--rules", rules, "rules per controller")->capture_default_str();
-  app.add_option("--population", population, "individuals per generation")
-      ->capture_default_str();
+  app.add_option("--population", population, "individuals per generation")->capture_default_str();
   app.add_option("--generations", generations, "generations")->capture_default_str();
   app.add_option("--elitism", elitism, "best individuals copied (and re-evaluated)")
       ->capture_default_str();
@@ -231,8 +232,8 @@ int main(int argc, char** argv) {
       }
       const std::string run_id =
           HostName() + "-" + std::to_string(getpid()) + "-" + std::to_string(std::time(nullptr));
-      store = ev::RunStore::Create(out_dir, run_id, config.seed, ev::ConfigToJson(config),
-                                   overwrite);
+      store =
+          ev::RunStore::Create(out_dir, run_id, config.seed, ev::ConfigToJson(config), overwrite);
     }
   } catch (const std::exception& e) {
     std::cerr << "ahhs-evolve: " << e.what() << '\n';
@@ -255,9 +256,8 @@ int main(int argc, char** argv) {
   LocalWorkers local;
   const std::string worker_bin = ahhs::launch::ExecutableDir() + "/ahhs-worker";
   for (int k = 0; k < workers && first < config.ga.generations; ++k) {
-    local.argv.push_back({worker_bin, "--lcm-url", url, "--arena", arena, "--id",
-                          HostName() + ":" + std::to_string(getpid()) + "/w" +
-                              std::to_string(k)});
+    local.argv.push_back({worker_bin, "--quiet", "--lcm-url", url, "--arena", arena, "--id",
+                          HostName() + ":" + std::to_string(getpid()) + "/w" + std::to_string(k)});
     local.pids.push_back(ahhs::launch::SpawnChild(local.argv.back(), true));
   }
 
@@ -336,15 +336,15 @@ int main(int argc, char** argv) {
           static_cast<unsigned long long>(c.results.dropped + c.statuses.dropped));
   } catch (const ev::FarmInterrupted&) {
     progress.Clear();
-    std::printf("interrupted: generations 0-%d are stored in %s\ncontinue with: ahhs-evolve "
-                "--resume %s\n",
-                store->LastGeneration(), dir.c_str(), dir.c_str());
+    std::printf(
+        "interrupted: generations 0-%d are stored in %s\ncontinue with: ahhs-evolve "
+        "--resume %s\n",
+        store->LastGeneration(), dir.c_str(), dir.c_str());
     exit_code = 130;
   } catch (const std::exception& e) {
     progress.Clear();
     std::cerr << "ahhs-evolve: " << e.what() << "\nthe run is stored up to generation "
-              << store->LastGeneration() << "; continue with: ahhs-evolve --resume " << dir
-              << '\n';
+              << store->LastGeneration() << "; continue with: ahhs-evolve --resume " << dir << '\n';
     exit_code = 2;
   }
   ahhs::launch::StopChildren(&local.pids, std::chrono::seconds(5));
@@ -353,8 +353,8 @@ int main(int argc, char** argv) {
   // Summary.
   try {
     const ev::IndividualRecord best = store->Best();
-    std::string replay = "ahhs-launch --scenario " +
-                         std::string(ahhs::sim::ScenarioName(config.scenario.kind));
+    std::string replay =
+        "ahhs-launch --scenario " + std::string(ahhs::sim::ScenarioName(config.scenario.kind));
     if (config.scenario.kind == ahhs::sim::ScenarioKind::kGait)
       replay += " --joints " + std::string(ahhs::sim::JointsName(config.scenario.joints)) +
                 " --modules " + std::to_string(config.scenario.num_modules);
@@ -366,8 +366,8 @@ int main(int argc, char** argv) {
     replay += " --genome " + dir + "/best.json --seed " +
               std::to_string(static_cast<std::int64_t>(best.eval_seed));
     std::printf("done: %d generations in %s\n", config.ga.generations, dir.c_str());
-    std::printf("best fitness: %.17g (generation %d, individual %d)\n",
-                best.evaluation.fitness, best.generation, best.index);
+    std::printf("best fitness: %.17g (generation %d, individual %d)\n", best.evaluation.fitness,
+                best.generation, best.index);
     std::printf("replay the best genome: %s\n", replay.c_str());
   } catch (const std::exception& e) {
     std::cerr << "ahhs-evolve: " << e.what() << '\n';

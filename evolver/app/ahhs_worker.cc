@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
   std::string url = ahhs::bus::kDefaultLcmUrl, arena = "direct", id,
               arena_url = ahhs::bus::kDefaultLcmUrl;
   int slots = 1;
-  bool verbose = false;
+  bool verbose = false, quiet = false;
   app.add_option("--lcm-url", url, "LCM URL of the evaluation farm (ttl=1 to serve a LAN)")
       ->capture_default_str();
   app.add_option("--slots", slots, "evaluations at once (one worker process each)")
@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--id", id, "worker id, unique on the bus (default: host:pid)");
   app.add_flag("-v,--verbose", verbose, "print a line per evaluation");
+  app.add_flag("-q,--quiet", quiet, "print errors only");
   CLI11_PARSE(app, argc, argv);
 
   std::signal(SIGINT, OnSignal);
@@ -69,14 +70,21 @@ int main(int argc, char** argv) {
     std::vector<pid_t> children;
     const std::string self = ahhs::launch::ExecutableDir() + "/ahhs-worker";
     for (int k = 0; k < slots; ++k) {
-      std::vector<std::string> args{self,    "--lcm-url", url,         "--arena",
-                                    arena,   "--arena-url", arena_url, "--id",
-                                    (id.empty() ? host + ":" + std::to_string(getpid()) : id) +
-                                        "/" + std::to_string(k)};
+      std::vector<std::string> args{
+          self,
+          "--lcm-url",
+          url,
+          "--arena",
+          arena,
+          "--arena-url",
+          arena_url,
+          "--id",
+          (id.empty() ? host + ":" + std::to_string(getpid()) : id) + "/" + std::to_string(k)};
       if (verbose) args.push_back("--verbose");
+      if (quiet) args.push_back("--quiet");
       children.push_back(ahhs::launch::SpawnChild(args, false));
     }
-    std::cerr << "ahhs-worker: " << slots << " worker processes on " << host << '\n';
+    if (!quiet) std::cerr << "ahhs-worker: " << slots << " worker processes on " << host << '\n';
     while (!g_stop) {
       bool any = false;
       for (pid_t& pid : children) {
@@ -103,20 +111,21 @@ int main(int argc, char** argv) {
       ev::EvalOutcome out = evaluator.Evaluate(job);
       if (fault_mode == "nan") out.fitness = std::numeric_limits<double>::quiet_NaN();
       if (verbose)
-        std::cout << "job " << job.job << " attempt " << job.attempt << ": fitness "
-                  << out.fitness << (out.message.empty() ? "" : " (" + out.message + ")")
-                  << std::endl;
+        std::cout << "job " << job.job << " attempt " << job.attempt << ": fitness " << out.fitness
+                  << (out.message.empty() ? "" : " (" + out.message + ")") << std::endl;
       return out;
     });
-    std::cerr << "ahhs-worker " << id << ": serving (" << arena << " arena) on " << url << '\n';
+    if (!quiet)
+      std::cerr << "ahhs-worker " << id << ": serving (" << arena << " arena) on " << url << '\n';
     node.Serve([&] {
       if (exit_after >= 0 && node.counters().evaluations >= exit_after) std::_Exit(3);
       return g_stop.load();
     });
     const auto& c = node.counters();
-    std::cerr << "ahhs-worker " << id << ": " << c.evaluations << " evaluations, " << c.refused
-              << " requests of another protocol version refused, " << c.requests.dropped
-              << " undecodable messages dropped\n";
+    if (!quiet)
+      std::cerr << "ahhs-worker " << id << ": " << c.evaluations << " evaluations, " << c.refused
+                << " requests of another protocol version refused, " << c.requests.dropped
+                << " undecodable messages dropped\n";
   } catch (const std::exception& e) {
     std::cerr << "ahhs-worker: " << e.what() << '\n';
     return 1;

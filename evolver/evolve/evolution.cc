@@ -3,7 +3,6 @@
 #include <chrono>
 #include <stdexcept>
 
-
 namespace ahhs::evolver {
 
 using nlohmann::json;
@@ -97,8 +96,8 @@ bool RunEvolution(RunStore& store, const EvolveConfig& config, FitnessEvaluator&
                         : Breed(population, fitness, ga, config.seed, g);
     std::vector<EvaluationJob> jobs;
     for (int i = 0; i < ga.population; ++i)
-      jobs.push_back({g, i, &population[static_cast<std::size_t>(i)],
-                      EvaluationSeed(config.seed, g, i)});
+      jobs.push_back(
+          {g, i, &population[static_cast<std::size_t>(i)], EvaluationSeed(config.seed, g, i)});
     const std::vector<Evaluation> results = evaluator.Evaluate(jobs);
     if (results.size() != jobs.size())
       throw std::runtime_error("the evaluator returned the wrong number of results");

@@ -15,8 +15,7 @@ FarmEvaluator::FarmEvaluator(bus::Bus* bus, FarmOptions options, Hooks hooks)
     : bus_(bus), options_(std::move(options)), hooks_(std::move(hooks)) {
   subscriptions_.push_back(bus::SubscribeTyped<worker_status_t>(
       *bus_, bus::kWorkerStatusChannel,
-      [this](const std::string&, const worker_status_t& m) { OnStatus(m); },
-      &counters_.statuses));
+      [this](const std::string&, const worker_status_t& m) { OnStatus(m); }, &counters_.statuses));
   subscriptions_.push_back(bus::SubscribeTyped<eval_result_t>(
       *bus_, bus::kEvalResultChannel,
       [this](const std::string&, const eval_result_t& m) { OnResult(m); }, &counters_.results));
@@ -56,8 +55,8 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
   LeaseTable table(options_.lease);
   std::map<std::int64_t, std::size_t> slot_of;  // job id -> position in `jobs`
   for (std::size_t k = 0; k < jobs.size(); ++k) {
-    const std::int64_t id = static_cast<std::int64_t>(jobs[k].generation) * options_.population +
-                            jobs[k].index;
+    const std::int64_t id =
+        static_cast<std::int64_t>(jobs[k].generation) * options_.population + jobs[k].index;
     slot_of[id] = k;
     table.AddJob(id);
   }
@@ -69,7 +68,7 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
     const auto now = FarmClock::now();
     // Feed what the workers said into the lease table.
     for (const auto& [name, w] : seen_) {
-      if (now - w.heard > options_.lease.worker_silence) continue;
+      if (now - w.heard > options_.lease.worker_silence || quarantined_.count(name)) continue;
       std::vector<std::int64_t> ours;
       int others = 0;
       if (w.status.run == options_.run)
@@ -92,10 +91,9 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
       job.worker = d.worker;
       job.config = options_.config;
       job.seed = j.seed;
-      job.deadline_utime =
-          bus::NowUtime() +
-          std::chrono::duration_cast<std::chrono::microseconds>(options_.lease.job_deadline)
-              .count();
+      job.deadline_utime = bus::NowUtime() + std::chrono::duration_cast<std::chrono::microseconds>(
+                                                 options_.lease.job_deadline)
+                                                 .count();
       job.genome = *j.genome;
       bus::PublishTyped(*bus_, bus::kEvalRequestChannel, RequestMessage(job));
       ++counters_.dispatched;
@@ -103,9 +101,14 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
     if (table.LiveWorkers(now) > 0) {
       last_worker_seen = now;
     } else if (now - last_worker_seen > options_.no_worker_timeout) {
-      throw FarmError("no evaluation worker has answered for " +
-                      std::to_string(options_.no_worker_timeout.count() / 1000) +
-                      " s (start one with ahhs-worker, or give ahhs-evolve --workers N)");
+      std::string why = "no evaluation worker has answered for " +
+                        std::to_string(options_.no_worker_timeout.count() / 1000) +
+                        " s (start one with ahhs-worker, or give ahhs-evolve --workers N)";
+      if (!quarantined_.empty()) {
+        why += "; workers given no more jobs after invalid results:";
+        for (const auto& q : quarantined_) why += " " + q;
+      }
+      throw FarmError(why);
     }
     bus_->Handle(std::chrono::milliseconds(20));
     const auto heard = FarmClock::now();
@@ -115,8 +118,8 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
         ++counters_.duplicates;
         continue;
       }
-      const bool valid = o.status == EvalOutcome::Status::kOk && std::isfinite(o.fitness) &&
-                         std::isfinite(o.cost);
+      const bool valid =
+          o.status == EvalOutcome::Status::kOk && std::isfinite(o.fitness) && std::isfinite(o.cost);
       const auto verdict = table.OnResult(o.job, o.attempt, o.worker, valid, heard);
       switch (verdict) {
         case LeaseTable::Verdict::kAccepted: {
@@ -144,6 +147,13 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
           hooks_.report("worker " + o.worker + " returned " + what + " for job " +
                         std::to_string(o.job) +
                         (verdict == LeaseTable::Verdict::kFailed ? "; giving up" : "; re-issued"));
+          if (++invalid_by_worker_[o.worker] == options_.quarantine_after &&
+              quarantined_.insert(o.worker).second) {
+            table.Forget(o.worker);
+            hooks_.report("worker " + o.worker + " returned " +
+                          std::to_string(options_.quarantine_after) +
+                          " invalid results; it gets no more jobs from this run");
+          }
           if (verdict == LeaseTable::Verdict::kFailed)
             throw FarmError("job " + std::to_string(o.job) + " failed " +
                             std::to_string(options_.lease.max_invalid) +

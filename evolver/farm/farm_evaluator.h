@@ -5,6 +5,8 @@
 // genome, seed).
 #pragma once
 
+#include <ahhs/eval_result_t.hpp>
+#include <ahhs/worker_status_t.hpp>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -13,9 +15,6 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <ahhs/eval_result_t.hpp>
-#include <ahhs/worker_status_t.hpp>
 
 #include "bus/bus.h"
 #include "bus/typed.h"
@@ -39,16 +38,18 @@ struct FarmOptions {
   sim::ScenarioConfig config;
   int population = 1;  // job id = generation * population + index
   LeaseOptions lease;
+  // A worker that returns this many invalid results gets no more jobs from this evolver.
+  int quarantine_after = 3;
   // Give up when no usable worker has been heard for this long while jobs wait.
   std::chrono::milliseconds no_worker_timeout{60000};
 };
 
 struct FarmCounters {
   std::int64_t dispatched = 0;
-  std::int64_t reissued = 0;        // leases ended without a valid result
-  std::int64_t invalid_results = 0;  // error status or non-finite fitness
-  std::int64_t duplicates = 0;       // results ignored (late, repeated, unknown)
-  std::int64_t late_messages = 0;    // reported by process arenas
+  std::int64_t reissued = 0;              // leases ended without a valid result
+  std::int64_t invalid_results = 0;       // error status or non-finite fitness
+  std::int64_t duplicates = 0;            // results ignored (late, repeated, unknown)
+  std::int64_t late_messages = 0;         // reported by process arenas
   bus::DecodeCounters results, statuses;  // garbage on the farm channels is dropped here
 };
 
@@ -93,6 +94,8 @@ class FarmEvaluator : public FitnessEvaluator {
   std::map<std::string, WorkerSeen> seen_;  // latest status of every compatible worker
   std::map<std::string, std::string> known_;
   std::set<std::string> refused_;
+  std::map<std::string, int> invalid_by_worker_;
+  std::set<std::string> quarantined_;
   std::vector<EvalOutcome> inbox_;  // results received during the current Handle()
 };
 

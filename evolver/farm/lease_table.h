@@ -59,6 +59,9 @@ class LeaseTable {
   void OnWorkerStatus(const std::string& worker, int slots, const std::vector<std::int64_t>& jobs,
                       int busy_with_others, FarmClock::time_point now);
 
+  // Stops using `worker`: it gets no new jobs, and its leases end at the next Expire().
+  void Forget(const std::string& worker) { workers_.erase(worker); }
+
   // Leases pending jobs (lowest job first) to the live workers with free capacity.
   std::vector<Dispatch> Schedule(FarmClock::time_point now);
 

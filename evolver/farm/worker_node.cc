@@ -17,8 +17,7 @@ WorkerNode::WorkerNode(bus::Bus* bus, std::string id, std::string host, Evaluate
       status_period_(status_period) {
   subscription_ = bus::SubscribeTyped<eval_request_t>(
       *bus_, bus::kEvalRequestChannel,
-      [this](const std::string&, const eval_request_t& m) { OnRequest(m); },
-      &counters_.requests);
+      [this](const std::string&, const eval_request_t& m) { OnRequest(m); }, &counters_.requests);
   PublishStatus();
 }
 

@@ -5,6 +5,7 @@
 // with several cores runs several worker processes (ahhs-worker --slots N).
 #pragma once
 
+#include <ahhs/eval_request_t.hpp>
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -12,8 +13,6 @@
 #include <set>
 #include <string>
 #include <tuple>
-
-#include <ahhs/eval_request_t.hpp>
 
 #include "bus/bus.h"
 #include "bus/typed.h"
@@ -23,7 +22,7 @@ namespace ahhs::evolver {
 
 struct WorkerCounters {
   std::int64_t evaluations = 0;
-  std::int64_t refused = 0;     // requests of another protocol version
+  std::int64_t refused = 0;       // requests of another protocol version
   std::int64_t bad_requests = 0;  // addressed to us but unusable (bad scenario or genome)
   bus::DecodeCounters requests;   // garbage on EVAL/REQUEST is counted here and dropped
 };

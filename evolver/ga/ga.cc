@@ -13,8 +13,7 @@ using modules::Rng;
 std::string CheckGaParams(const GaParams& p) {
   if (p.population < 2) return "population must be at least 2";
   if (p.generations < 1) return "generations must be at least 1";
-  if (p.elitism < 0 || p.elitism >= p.population)
-    return "elitism must be in [0, population - 1]";
+  if (p.elitism < 0 || p.elitism >= p.population) return "elitism must be in [0, population - 1]";
   if (!(p.mutation.gene_rate >= 0 && p.mutation.gene_rate <= 1))
     return "mutation rate must be in [0, 1]";
   if (!(p.mutation.max_change > 0 && p.mutation.max_change <= 1))
@@ -73,20 +72,20 @@ std::vector<Genome> Breed(const std::vector<Genome>& parents, const std::vector<
                           const GaParams& params, std::uint64_t run_seed, int next_generation) {
   if (parents.size() != fitness.size() || parents.empty())
     throw std::invalid_argument("Breed: parents and fitness differ in size");
-  Rng rng(modules::DeriveSeed(run_seed,
-                              {kBreedStream, static_cast<std::uint64_t>(next_generation)}));
+  Rng rng(
+      modules::DeriveSeed(run_seed, {kBreedStream, static_cast<std::uint64_t>(next_generation)}));
   std::vector<Genome> next;
   next.reserve(static_cast<std::size_t>(params.population));
   const std::vector<int> ranked = RankByFitness(fitness);
   for (int e = 0; e < params.elitism && e < static_cast<int>(ranked.size()); ++e)
     next.push_back(parents[static_cast<std::size_t>(ranked[static_cast<std::size_t>(e)])]);
   while (static_cast<int>(next.size()) < params.population) {
-    const auto a = static_cast<std::size_t>(
-        SelectProportional(fitness, params.selection_epsilon, rng));
+    const auto a =
+        static_cast<std::size_t>(SelectProportional(fitness, params.selection_epsilon, rng));
     Genome child = parents[a];
     if (rng.Bernoulli(params.crossover_rate)) {
-      const auto b = static_cast<std::size_t>(
-          SelectProportional(fitness, params.selection_epsilon, rng));
+      const auto b =
+          static_cast<std::size_t>(SelectProportional(fitness, params.selection_epsilon, rng));
       child = modules::Crossover(parents[a], parents[b], rng).first;
     }
     modules::Mutate(&child, params.mutation, rng);
@@ -125,8 +124,8 @@ std::vector<GenerationStats> RunGa(const modules::Shape& shape, const GaParams& 
     if (g > 0) population = Breed(population, fitness, params, run_seed, g);
     std::vector<EvaluationJob> jobs;
     for (int i = 0; i < params.population; ++i)
-      jobs.push_back({g, i, &population[static_cast<std::size_t>(i)],
-                      EvaluationSeed(run_seed, g, i)});
+      jobs.push_back(
+          {g, i, &population[static_cast<std::size_t>(i)], EvaluationSeed(run_seed, g, i)});
     const std::vector<Evaluation> results = evaluator.Evaluate(jobs);
     if (results.size() != jobs.size())
       throw std::runtime_error("the evaluator returned the wrong number of results");

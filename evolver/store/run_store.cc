@@ -141,8 +141,7 @@ std::unique_ptr<RunStore> RunStore::Create(const std::string& dir, const std::st
   }
   fs::create_directories(root / "best", ec);
   if (ec) throw RunStoreError("cannot create " + dir + ": " + ec.message());
-  sqlite3* db =
-      OpenDatabase(root / kDatabaseName, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  sqlite3* db = OpenDatabase(root / kDatabaseName, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
   std::unique_ptr<RunStore> store(new RunStore(dir, db));
   store->Exec(
       "PRAGMA journal_mode=WAL;"
@@ -346,10 +345,9 @@ void RunStore::Export() const {
   csv << "generation,best,mean,median,worst,best_index,wall_time_s\n";
   const auto generations = LoadGenerationRecords();
   for (const auto& g : generations)
-    csv << g.generation << ',' << FormatDouble(g.stats.best) << ','
-        << FormatDouble(g.stats.mean) << ',' << FormatDouble(g.stats.median) << ','
-        << FormatDouble(g.stats.worst) << ',' << g.stats.best_index << ','
-        << FormatDouble(g.wall_time) << '\n';
+    csv << g.generation << ',' << FormatDouble(g.stats.best) << ',' << FormatDouble(g.stats.mean)
+        << ',' << FormatDouble(g.stats.median) << ',' << FormatDouble(g.stats.worst) << ','
+        << g.stats.best_index << ',' << FormatDouble(g.wall_time) << '\n';
   WriteFileAtomically(root / "generations.csv", csv.str());
   std::error_code ec;
   fs::create_directories(root / "best", ec);

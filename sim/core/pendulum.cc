@@ -51,8 +51,7 @@ namespace {
 // offset is max_angular_speed * integration_step = 0.016): Taylor series of sin d and cos d to
 // d^9, whose remainder (< 1e-22) is far below double rounding. One library sincos per RK4 step
 // instead of four, the largest cost of the pendulum (docs/performance.md).
-inline void SinCosNear(double sin_phi, double cos_phi, double d, double* sin_out,
-                       double* cos_out) {
+inline void SinCosNear(double sin_phi, double cos_phi, double d, double* sin_out, double* cos_out) {
   const double d2 = d * d;
   // Multiplications by constant reciprocals: divisions here would cost more than the sincos.
   constexpr double k6 = 1.0 / 6, k20 = 1.0 / 20, k42 = 1.0 / 42, k72 = 1.0 / 72;

@@ -1,10 +1,10 @@
 // The GA core on analytic fitness functions and against hand-checked selection behaviour.
+#include "evolver/ga/ga.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
 #include <set>
-
-#include "evolver/ga/ga.h"
 
 using namespace ahhs;
 using evolver::Evaluation;

@@ -1,7 +1,7 @@
 // The farm's lease bookkeeping against a fake clock.
-#include <catch2/catch.hpp>
-
 #include "evolver/farm/lease_table.h"
+
+#include <catch2/catch.hpp>
 
 using namespace ahhs::evolver;
 using std::chrono::milliseconds;

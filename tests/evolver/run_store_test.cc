@@ -1,15 +1,17 @@
 // The run store: what is committed comes back bit for bit; a run directory is never
 // overwritten unless asked; damaged or foreign directories give clear errors; the exports
 // match the database. And RunEvolution resumed after a stop equals an uninterrupted run.
+#include "evolver/store/run_store.h"
+
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "evolver/evolve/evolution.h"
-#include "evolver/store/run_store.h"
 #include "modules/core/genome_json.h"
 
 using namespace ahhs;
@@ -76,8 +78,8 @@ std::string DumpRun(const RunStore& store) {
   std::ostringstream s;
   for (int g = 0; g <= store.LastGeneration(); ++g)
     for (const auto& r : store.LoadGeneration(g))
-      s << g << ' ' << r.index << ' ' << modules::GenomeHash(r.genome) << ' ' << r.eval_seed
-        << ' ' << std::hexfloat << r.evaluation.fitness << ' ' << r.elite << '\n';
+      s << g << ' ' << r.index << ' ' << modules::GenomeHash(r.genome) << ' ' << r.eval_seed << ' '
+        << std::hexfloat << r.evaluation.fitness << ' ' << r.elite << '\n';
   return s.str();
 }
 
@@ -137,8 +139,8 @@ TEST_CASE("a run stopped after any generation and resumed equals the uninterrupt
   TempDir tmp;
   const auto config = SmallConfig();
   HashFitness f;
-  auto whole = RunStore::Create(tmp.path + "/whole", "w", 123, evolver::ConfigToJson(config),
-                                false);
+  auto whole =
+      RunStore::Create(tmp.path + "/whole", "w", 123, evolver::ConfigToJson(config), false);
   evolver::RunEvolution(*whole, config, f, 1);
   const std::string expected = DumpRun(*whole);
 

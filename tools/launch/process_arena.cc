@@ -65,8 +65,8 @@ ProcessArena::ProcessArena(ProcessArenaOptions options) : options_(std::move(opt
   try {
     if (!options_.log_file.empty()) {
       children_.push_back({"lcm-logger", SpawnChild({"/usr/bin/lcm-logger", "--lcm-url=" + url,
-                                                "--quiet", "--force", options_.log_file},
-                                               quiet)});
+                                                     "--quiet", "--force", options_.log_file},
+                                                    quiet)});
       for (int k = 0; k < 200; ++k) {  // wait until the logger has opened its file
         struct stat st;
         if (stat(options_.log_file.c_str(), &st) == 0) break;
@@ -74,8 +74,12 @@ ProcessArena::ProcessArena(ProcessArenaOptions options) : options_(std::move(opt
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
-    std::vector<std::string> sim_args{dir + "/ahhs-sim",         "--lcm-url", url, "--arena",
-                                      options_.arena,            "--lockstep-timeout-ms",
+    std::vector<std::string> sim_args{dir + "/ahhs-sim",
+                                      "--lcm-url",
+                                      url,
+                                      "--arena",
+                                      options_.arena,
+                                      "--lockstep-timeout-ms",
                                       std::to_string(options_.lockstep_timeout_ms)};
     if (options_.verbose) sim_args.push_back("--verbose");
     // lcm-logger is a passive listener: pace the lockstep so it keeps up on a busy machine.
@@ -88,9 +92,9 @@ ProcessArena::ProcessArena(ProcessArenaOptions options) : options_(std::move(opt
       children_.push_back(
           {"ahhs-module " + std::to_string(m),
            SpawnChild({dir + "/ahhs-module", "--id", std::to_string(m), "--lcm-url", url, "--arena",
-                  options_.arena, "--hormone-timeout-ms",
-                  std::to_string(std::max(1, options_.lockstep_timeout_ms / 4))},
-                 quiet)});
+                       options_.arena, "--hormone-timeout-ms",
+                       std::to_string(std::max(1, options_.lockstep_timeout_ms / 4))},
+                      quiet)});
     // Our own bus is opened after the children are forked, so that no child inherits its
     // sockets.
     bus_ = bus::MakeBus(url);

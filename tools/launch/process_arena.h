@@ -18,13 +18,13 @@
 namespace ahhs::launch {
 
 struct ProcessArenaOptions {
-  std::string url;        // LCM URL of the arena's traffic
-  std::string arena;      // channel prefix, unique on the bus
-  int num_modules = 5;    // module processes (2 for the pendulum)
+  std::string url;      // LCM URL of the arena's traffic
+  std::string arena;    // channel prefix, unique on the bus
+  int num_modules = 5;  // module processes (2 for the pendulum)
   int lockstep_timeout_ms = 2000;
-  bool verbose = false;   // show the children's output
-  std::string log_file;   // when set, lcm-logger records everything into it
-  std::string bin_dir;    // where ahhs-sim and the others are (default: next to this program)
+  bool verbose = false;  // show the children's output
+  std::string log_file;  // when set, lcm-logger records everything into it
+  std::string bin_dir;   // where ahhs-sim and the others are (default: next to this program)
 };
 
 // Starts `argv` (argv[0] a path) as a child that dies with this process and ignores Ctrl-C (its

@@ -1,0 +1,156 @@
+#!/usr/bin/env bash
+# ahhs-evolve and ahhs-worker end to end, inside a private network namespace:
+#  1. the same config and seed give identical runs (every genome, seed and fitness) with 1 or 2
+#     local workers and with direct, fused and process arenas, for the pendulum and the gait;
+#  2. kill -9 mid-run, then --resume: the run ends exactly as the uninterrupted one; Ctrl-C stops
+#     cleanly with exit 130 and the resume command;
+#  3. external workers: one killed mid-run, one returning NaN, a worker of another protocol
+#     version, garbage on every farm channel: the run completes with identical results and
+#     reports what happened; a worker refuses a request of another protocol version;
+#  4. bad input: an existing run directory, bad options, a directory that is not a run, no
+#     worker at all: clear messages, non-zero exits, nothing overwritten.
+set -uo pipefail
+bin=${1:?usage: evolve_test.sh BIN_DIR}
+[[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$0" "$@"
+url="udpm://239.255.42.60:7751?ttl=0&recv_buf_size=4194304"
+tmp=$(mktemp -d)
+cleanup() {
+  pkill -KILL -f "$bin/ahhs-(evolve|worker)" 2>/dev/null
+  pkill -KILL -f "$bin/(bus_peer|farm_peer)" 2>/dev/null
+  rm -rf "$tmp"
+}
+trap cleanup EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+E="$bin/ahhs-evolve"
+# Everything that must not depend on the process layout: genomes, seeds, fitness, cost.
+dump() {
+  sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, eval_seed, elite,
+    printf('%!.17g', fitness), printf('%!.17g', cost) FROM individuals ORDER BY generation, idx"
+}
+same_run() {  # same_run DIR_A DIR_B WHAT
+  dump "$1" >$tmp/a.dump; dump "$2" >$tmp/b.dump
+  [[ -s $tmp/a.dump ]] || fail "$3: empty run"
+  cmp -s $tmp/a.dump $tmp/b.dump || { diff $tmp/a.dump $tmp/b.dump | head -5; fail "$3: runs differ"; }
+  echo "$3: identical ($(wc -l <$tmp/a.dump) individuals)"
+}
+pend="--scenario pendulum --hormones 6 --rules 8 --population 12 --generations 5 --duration 10 --seed 11 --lcm-url $url"
+gait="--scenario gait --hormones 3 --rules 6 --population 6 --generations 3 --duration 2 --seed 12 --lcm-url $url"
+
+echo "== 1. determinism across workers and arenas"
+$E $pend --out $tmp/p-direct-1 --workers 1 >$tmp/out 2>&1 || { cat $tmp/out; fail "pendulum run"; }
+grep -q "^best fitness: " $tmp/out || fail "no summary: $(cat $tmp/out)"
+grep -q "^replay the best genome: ahhs-launch --scenario pendulum --duration 10 --genome $tmp/p-direct-1/best.json --seed " $tmp/out ||
+  fail "no replay command: $(cat $tmp/out)"
+[[ $(wc -l <$tmp/p-direct-1/generations.csv) == 6 ]] || fail "generations.csv: $(cat $tmp/p-direct-1/generations.csv)"
+ls $tmp/p-direct-1/best/gen-000{0,1,2,3,4}.json >/dev/null || fail "best genome files"
+# The replay command reproduces the stored best fitness.
+replay=$(sed -n 's/^replay the best genome: ahhs-launch //p' $tmp/out)
+best=$(sed -n 's/^best fitness: \([^ ]*\) .*/\1/p' $tmp/out)
+"$bin/ahhs-launch" $replay --fused >$tmp/replay.out || fail "replay"
+[[ "$(tail -1 $tmp/replay.out)" == "fitness: $best" ]] || fail "replay gives $(tail -1 $tmp/replay.out), stored $best"
+echo "replayed best: $best"
+for v in "2 direct" "2 fused" "1 processes"; do
+  set -- $v
+  $E $pend --out $tmp/p-$2-$1 --workers $1 --arena $2 >$tmp/out 2>&1 || { cat $tmp/out; fail "pendulum $v"; }
+  same_run $tmp/p-direct-1 $tmp/p-$2-$1 "pendulum, $1 workers, $2 arena"
+done
+$E $gait --out $tmp/g-direct --workers 2 >$tmp/out 2>&1 || { cat $tmp/out; fail "gait run"; }
+for a in fused processes; do
+  $E $gait --out $tmp/g-$a --workers 1 --arena $a >$tmp/out 2>&1 || { cat $tmp/out; fail "gait $a"; }
+  same_run $tmp/g-direct $tmp/g-$a "gait, $a arena"
+done
+$E $gait --joints fixed --variant ahhs1 --out $tmp/gf-direct --workers 2 >/dev/null 2>&1 || fail "gait fixed"
+$E $gait --joints fixed --variant ahhs1 --out $tmp/gf-fused --workers 1 --arena fused >/dev/null 2>&1 || fail "gait fixed fused"
+same_run $tmp/gf-direct $tmp/gf-fused "gait fixed ahhs1, fused arena"
+
+echo "== 2. kill -9 and resume; Ctrl-C"
+long="--scenario gait --hormones 3 --rules 6 --population 8 --generations 30 --duration 4 --seed 13 --lcm-url $url"
+$E $long --out $tmp/whole --workers 2 >/dev/null 2>&1 || fail "uninterrupted run"
+for at in 2 9; do
+  $E $long --out $tmp/killed$at --workers 2 >$tmp/killed.out 2>&1 &
+  pid=$!
+  for _ in $(seq 1 600); do
+    [[ $(wc -l 2>/dev/null <$tmp/killed$at/generations.csv || echo 0) -gt $at ]] && break
+    sleep 0.01
+  done
+  kill -9 $pid; wait $pid 2>/dev/null
+  stored=$(($(wc -l <$tmp/killed$at/generations.csv) - 1))
+  [[ $stored -lt 30 ]] || fail "the run ended before the kill"
+  sleep 0.3
+  pgrep -f "$bin/ahhs-worker" >/dev/null && fail "local workers outlived a killed evolver"
+  $E --resume $tmp/killed$at --workers 2 >$tmp/resume.out 2>&1 || { cat $tmp/resume.out; fail "resume"; }
+  grep -q "resuming at generation $stored" $tmp/resume.out || fail "resume message: $(head -3 $tmp/resume.out)"
+  same_run $tmp/whole $tmp/killed$at "killed after $stored generations, resumed"
+  cmp -s $tmp/whole/generations.csv $tmp/killed$at/generations.csv && fail "wall times cannot all match"
+  diff <(cut -d, -f1-6 $tmp/whole/generations.csv) <(cut -d, -f1-6 $tmp/killed$at/generations.csv) ||
+    fail "generations.csv statistics differ after resume"
+  cmp -s $tmp/whole/best.json $tmp/killed$at/best.json || true
+done
+$E $long --out $tmp/ctrlc --workers 2 >$tmp/ctrlc.out 2>&1 &
+pid=$!
+for _ in $(seq 1 600); do [[ $(wc -l 2>/dev/null <$tmp/ctrlc/generations.csv || echo 0) -gt 3 ]] && break; sleep 0.01; done
+kill -INT $pid; wait $pid; rc=$?
+[[ $rc == 130 ]] || fail "Ctrl-C exit status $rc: $(cat $tmp/ctrlc.out)"
+grep -q "continue with: ahhs-evolve --resume $tmp/ctrlc" $tmp/ctrlc.out || fail "Ctrl-C message: $(cat $tmp/ctrlc.out)"
+sleep 0.3
+pgrep -f "$bin/ahhs-worker" >/dev/null && fail "workers left after Ctrl-C"
+$E --resume $tmp/ctrlc >/dev/null 2>&1 || fail "resume after Ctrl-C"
+same_run $tmp/whole $tmp/ctrlc "Ctrl-C, resumed"
+$E --resume $tmp/ctrlc >$tmp/again.out 2>&1 || fail "resume of a finished run"
+grep -q "already complete" $tmp/again.out || fail "finished run: $(cat $tmp/again.out)"
+
+echo "== 3. external workers and faults"
+"$bin/ahhs-worker" --lcm-url "$url" --id steady >$tmp/w1.out 2>&1 &
+w1=$!
+"$bin/ahhs-worker" --lcm-url "$url" --id doomed >$tmp/w2.out 2>&1 &
+w2=$!
+AHHS_WORKER_FAULT=nan "$bin/ahhs-worker" --lcm-url "$url" --id liar >$tmp/w3.out 2>&1 &
+w3=$!
+"$bin/farm_peer" --role foreign-worker --lcm-url "$url" --seconds 60 >/dev/null 2>&1 &
+"$bin/bus_peer" --role spam --lcm-url "$url" --channels "EVAL/REQUEST,EVAL/RESULT,WORKER/STATUS" --seconds 60 >$tmp/spam.out 2>&1 &
+spam=$!
+sleep 0.5
+"$bin/farm_peer" --role foreign-evolver --lcm-url "$url" --worker steady --seconds 5 >$tmp/refusal.out ||
+  fail "the worker did not refuse a foreign request: $(cat $tmp/refusal.out)"
+grep -q "version" $tmp/refusal.out || fail "refusal message: $(cat $tmp/refusal.out)"
+$E $long --out $tmp/external --workers 0 --job-deadline 20 >$tmp/external.out 2>&1 &
+pid=$!
+for _ in $(seq 1 600); do [[ $(wc -l 2>/dev/null <$tmp/external/generations.csv || echo 0) -gt 5 ]] && break; sleep 0.01; done
+kill -9 $w2
+wait $pid || { cat $tmp/external.out; fail "run with external workers"; }
+kill $spam 2>/dev/null
+same_run $tmp/whole $tmp/external "external workers (one killed, one returning NaN, garbage)"
+grep -q "refused worker future-worker.*version 99" $tmp/external.out || fail "no refusal reported: $(head $tmp/external.out)"
+grep -q "worker liar returned a non-finite fitness" $tmp/external.out || fail "NaN not reported"
+grep -q "worker liar returned 3 invalid results; it gets no more jobs" $tmp/external.out || fail "liar not quarantined"
+grep -Eq "re-issued \((worker silent|lease expired)" $tmp/external.out || fail "no re-issue reported"
+grep -Eq "farm: [0-9]+ jobs re-issued, [1-9][0-9]* invalid results, [1-9][0-9]* undecodable" $tmp/external.out ||
+  fail "farm summary: $(tail -5 $tmp/external.out)"
+[[ $(sqlite3 $tmp/external/run.sqlite "SELECT COUNT(*) FROM individuals WHERE worker = 'liar'") == 0 ]] ||
+  fail "a NaN result was stored"
+kill $w1 $w3; wait $w1 $w3 2>/dev/null
+grep -q "undecodable messages dropped" $tmp/w1.out || fail "worker summary: $(cat $tmp/w1.out)"
+echo "$(grep -c . $tmp/external.out) lines of output; $(grep -c 're-issued' $tmp/external.out) re-issues reported"
+
+echo "== 4. bad input"
+$E $pend --out $tmp/p-direct-1 --workers 1 >$tmp/out 2>&1 && fail "overwrote a run"
+grep -q "already holds files; continue that run with --resume" $tmp/out || fail "overwrite message: $(cat $tmp/out)"
+same_run $tmp/p-direct-1 $tmp/p-direct-2 "the refused run left the old one intact"
+$E $pend --out $tmp/p-direct-1 --workers 1 --overwrite >/dev/null 2>&1 || fail "--overwrite"
+$E --scenario pendulum --population 1 --out $tmp/bad1 >$tmp/out 2>&1 && fail "population 1 accepted"
+grep -q "population must be at least 2" $tmp/out || fail "population message: $(cat $tmp/out)"
+[[ -e $tmp/bad1 ]] && fail "a refused config left a directory"
+$E --resume $tmp/nothing >$tmp/out 2>&1 && fail "resume of nothing"
+grep -q "is not a directory" $tmp/out || fail "resume message: $(cat $tmp/out)"
+mkdir $tmp/notrun
+$E --resume $tmp/notrun >$tmp/out 2>&1 && fail "resume of a non-run"
+grep -q "not a run directory" $tmp/out || fail "non-run message: $(cat $tmp/out)"
+$E --resume $tmp/whole --population 30 >$tmp/out 2>&1 && fail "resume with a new population"
+grep -q "cannot be given with --resume" $tmp/out || fail "resume option message: $(cat $tmp/out)"
+$E --config /nonexistent.toml >$tmp/out 2>&1 && fail "missing config accepted"
+$E $pend --out $tmp/noworker --workers 0 --worker-wait 1 >$tmp/out 2>&1
+rc=$?
+[[ $rc == 2 ]] || fail "no worker: exit $rc"
+grep -q "no evaluation worker has answered" $tmp/out || fail "no-worker message: $(cat $tmp/out)"
+grep -q "continue with: ahhs-evolve --resume $tmp/noworker" $tmp/out || fail "no resume hint"
+echo "PASS"

@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
   double duration = 0, mutation_rate = 0.15, mutation_max_change = 0.1, crossover_rate = 0.05;
   std::uint64_t seed = 1;
   double job_deadline = 300, worker_wait = 60;
-  bool overwrite = false;
+  bool overwrite = false, show_config = false;
   app.add_option("--scenario", scenario, "gait or pendulum")
       ->check(CLI::IsMember({"gait", "pendulum"}))
       ->capture_default_str();
@@ -170,6 +170,8 @@ int main(int argc, char** argv) {
       app.add_option("--resume", resume_dir, "continue the run stored in this directory");
   out_opt->excludes(resume_opt);
   app.add_flag("--overwrite", overwrite, "replace an existing run directory given with --out");
+  app.add_flag("--show-config", show_config,
+               "print the run's configuration as JSON and exit (nothing is created or run)");
   app.add_option("--workers", workers,
                  "local worker processes to start (default: one per core; 0: only external)")
       ->check(CLI::Range(0, 256));
@@ -204,6 +206,10 @@ int main(int argc, char** argv) {
                                       "its stored configuration");
       store = ev::RunStore::Open(resume_dir);
       config = ev::ConfigFromJson(store->config());
+      if (show_config) {
+        std::cout << ev::ConfigToJson(config).dump(2) << '\n';
+        return 0;
+      }
     } else {
       config.scenario.kind = ahhs::sim::ParseScenarioKind(scenario);
       config.scenario.joints = ahhs::sim::ParseJoints(joints);
@@ -224,6 +230,10 @@ int main(int argc, char** argv) {
       if (duration < 0) throw std::invalid_argument("--duration must not be negative");
       const std::string error = ev::CheckEvolveConfig(config);
       if (!error.empty()) throw std::invalid_argument(error);
+      if (show_config) {
+        std::cout << ev::ConfigToJson(config).dump(2) << '\n';
+        return 0;
+      }
       if (out_dir.empty()) {
         char stamp[32];
         const std::time_t t = std::time(nullptr);

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# The evaluation farm over a LAN made of network namespaces (root only; skipped otherwise):
+# a switch namespace with a bridge, and three hosts joined to it by veth pairs. The evolver runs
+# on host 0 with no local worker, ahhs-worker runs on hosts 1 and 2, multicast with ttl=1 crosses
+# the bridge (and nothing else: the namespaces have no other interface). Then host 1 loses 10 %
+# of what it receives (nftables). Both runs must match the one-host run bit for bit.
+set -uo pipefail
+bin=${1:?usage: lan_test.sh BIN_DIR}
+skip() { echo "SKIPPED: $*"; exit 77; }
+[[ $(id -u) == 0 ]] || skip "needs root to make network namespaces (ip netns)"
+command -v ip >/dev/null || skip "ip (iproute2) not found"
+tag=ahhs$$
+sw=$tag-sw
+hosts=($tag-h0 $tag-h1 $tag-h2)
+tmp=$(mktemp -d)
+cleanup() {
+  for h in "${hosts[@]}"; do
+    ip netns pids $h 2>/dev/null | xargs -r kill -KILL 2>/dev/null
+    ip netns del $h 2>/dev/null
+  done
+  ip netns del $sw 2>/dev/null
+  rm -rf "$tmp"
+}
+trap cleanup EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+ip netns add $sw 2>/dev/null || skip "cannot create network namespaces here"
+ip -n $sw link add br0 type bridge || fail "bridge"
+ip -n $sw link set br0 type bridge mcast_snooping 0
+ip -n $sw link set br0 up
+for i in 0 1 2; do
+  h=${hosts[$i]}
+  ip netns add $h || fail "netns $h"
+  ip link add v$i netns $h type veth peer name p$i netns $sw || fail "veth $i"
+  ip -n $sw link set p$i master br0
+  ip -n $sw link set p$i up
+  ip -n $h link set lo up
+  ip -n $h addr add 10.213.0.$((i + 1))/24 dev v$i
+  ip -n $h link set v$i up
+  ip -n $h link set v$i multicast on
+  ip -n $h route add 224.0.0.0/4 dev v$i
+done
+in_host() { local h=$1; shift; ip netns exec "$h" "$@"; }
+url="udpm://239.255.42.70:7761?ttl=1&recv_buf_size=4194304"
+args="--scenario gait --hormones 3 --rules 6 --population 8 --generations 6 --duration 3 --seed 21 --lcm-url $url"
+dump() {
+  sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, eval_seed, elite,
+    printf('%!.17g', fitness), printf('%!.17g', cost) FROM individuals ORDER BY generation, idx"
+}
+
+echo "== one host: the evolver and two local workers on host 0"
+in_host ${hosts[0]} "$bin/ahhs-evolve" $args --out $tmp/one --workers 2 >$tmp/one.out 2>&1 ||
+  { cat $tmp/one.out; fail "one-host run"; }
+
+echo "== LAN: workers on hosts 1 and 2 only"
+in_host ${hosts[1]} "$bin/ahhs-worker" --lcm-url "$url" --id host1 >$tmp/w1.out 2>&1 &
+in_host ${hosts[2]} "$bin/ahhs-worker" --lcm-url "$url" --id host2 >$tmp/w2.out 2>&1 &
+in_host ${hosts[0]} timeout 300 "$bin/ahhs-evolve" $args --out $tmp/lan --workers 0 --worker-wait 20 >$tmp/lan.out 2>&1 ||
+  { cat $tmp/lan.out; fail "LAN run"; }
+dump $tmp/one >$tmp/one.dump
+dump $tmp/lan >$tmp/lan.dump
+[[ -s $tmp/one.dump ]] || fail "empty run"
+cmp -s $tmp/one.dump $tmp/lan.dump || fail "the LAN run differs from the one-host run"
+workers=$(sqlite3 $tmp/lan/run.sqlite "SELECT group_concat(DISTINCT worker) FROM (SELECT worker FROM individuals ORDER BY worker)")
+[[ "$workers" == "host1,host2" ]] || fail "the LAN run was served by: $workers"
+echo "identical ($(wc -l <$tmp/lan.dump) individuals), served by $workers"
+
+echo "== LAN, host 1 loses 10 % of what it receives"
+in_host ${hosts[1]} nft add table inet t &&
+  in_host ${hosts[1]} nft add chain inet t in '{ type filter hook input priority 0; }' &&
+  in_host ${hosts[1]} nft add rule inet t in numgen random mod 10 0 drop ||
+  skip "nftables unavailable for the lossy part (the clean LAN run passed)"
+in_host ${hosts[0]} timeout 300 "$bin/ahhs-evolve" $args --out $tmp/lossy --workers 0 --worker-wait 20 --job-deadline 10 >$tmp/lossy.out 2>&1 ||
+  { cat $tmp/lossy.out; fail "lossy LAN run"; }
+dump $tmp/lossy >$tmp/lossy.dump
+cmp -s $tmp/one.dump $tmp/lossy.dump || fail "the lossy LAN run differs from the one-host run"
+echo "identical; $(grep -c 're-issued' $tmp/lossy.out) re-issues reported"
+echo "PASS"

@@ -226,11 +226,26 @@ int RunStore::LastGeneration() const {
 }
 
 std::vector<IndividualRecord> RunStore::LoadGeneration(int generation) const {
+  return LoadIndividuals(generation, -1);
+}
+
+IndividualRecord RunStore::LoadIndividual(int generation, int index) const {
+  auto found = LoadIndividuals(generation, index);
+  if (found.empty())
+    throw RunStoreError(dir_ + ": generation " + std::to_string(generation) + " individual " +
+                        std::to_string(index) + " is not stored");
+  return found.front();
+}
+
+std::vector<IndividualRecord> RunStore::LoadIndividuals(int generation, int index) const {
   std::vector<IndividualRecord> out;
   Statement get(db_,
                 "SELECT idx, genome, genome_hash, elite, eval_seed, fitness, cost, worker, "
-                "attempt, wall_time, message FROM individuals WHERE generation = ? ORDER BY idx");
-  get.Bind(1, static_cast<std::int64_t>(generation));
+                "attempt, wall_time, message FROM individuals WHERE generation = ? "
+                "AND (? < 0 OR idx = ?) ORDER BY idx");
+  get.Bind(1, static_cast<std::int64_t>(generation))
+      .Bind(2, static_cast<std::int64_t>(index))
+      .Bind(3, static_cast<std::int64_t>(index));
   while (get.Step()) {
     IndividualRecord r;
     r.generation = generation;
@@ -332,11 +347,7 @@ IndividualRecord RunStore::Best() const {
                  "SELECT generation, idx FROM individuals ORDER BY fitness DESC, generation, idx "
                  "LIMIT 1");
   if (!best.Step()) throw RunStoreError(dir_ + ": the run has no evaluated individual yet");
-  const int generation = static_cast<int>(best.Int(0));
-  const int index = static_cast<int>(best.Int(1));
-  for (auto& r : LoadGeneration(generation))
-    if (r.index == index) return r;
-  throw RunStoreError(dir_ + ": database changed while reading");
+  return LoadIndividual(static_cast<int>(best.Int(0)), static_cast<int>(best.Int(1)));
 }
 
 void RunStore::Export() const {
@@ -365,8 +376,8 @@ void RunStore::Export() const {
     std::snprintf(name, sizeof name, "gen-%04d.json", g.generation);
     const fs::path path = root / "best" / name;
     if (fs::exists(path, ec)) continue;  // generations never change once committed
-    for (const auto& r : LoadGeneration(g.generation))
-      if (r.index == g.stats.best_index) modules::SaveGenomeFile(path, r.genome, meta(r));
+    const IndividualRecord r = LoadIndividual(g.generation, g.stats.best_index);
+    modules::SaveGenomeFile(path.string(), r.genome, meta(r));
   }
   if (!generations.empty()) {
     const IndividualRecord best = Best();

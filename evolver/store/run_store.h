@@ -74,6 +74,8 @@ class RunStore {
   // The highest committed generation, -1 when none.
   int LastGeneration() const;
   std::vector<IndividualRecord> LoadGeneration(int generation) const;
+  // One individual; throws RunStoreError when it is not stored.
+  IndividualRecord LoadIndividual(int generation, int index) const;
   std::vector<GenerationRecord> LoadGenerationRecords() const;
 
   // Stores a whole generation in one transaction, then rewrites the exports.
@@ -90,6 +92,7 @@ class RunStore {
   RunStore(std::string dir, sqlite3* db);
   void Exec(const char* sql) const;
   void LoadRunTable();
+  std::vector<IndividualRecord> LoadIndividuals(int generation, int index) const;  // -1: all
 
   std::string dir_;
   sqlite3* db_ = nullptr;

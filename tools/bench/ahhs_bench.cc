@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <vector>
 
@@ -168,6 +169,39 @@ void BenchArena(const std::string& url, std::uint64_t seed) {
         "  (the multi-process run failed: run under tools/ahhs-netns, or give --lcm-url)\n");
 }
 
+// One evolution run through ahhs-evolve (real worker processes, real LCM traffic, the SQLite
+// store), timed from the outside.
+void BenchEvolve(const std::string& name, const std::string& options, int generations,
+                 const std::string& url, int workers) {
+  char tmpl[] = "/tmp/ahhs-bench-evolve-XXXXXX";
+  const std::string dir = mkdtemp(tmpl);
+  const std::string command =
+      ahhs::launch::ExecutableDir() + "/ahhs-evolve " + options + " --generations " +
+      std::to_string(generations) + " --lcm-url '" + url + "' --out " + dir + "/run" +
+      (workers >= 0 ? " --workers " + std::to_string(workers) : "") + " 2>&1";
+  const auto start = std::chrono::steady_clock::now();
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output, best = "?";
+  char line[4096];
+  while (pipe && std::fgets(line, sizeof line, pipe)) {
+    output += line;
+    if (std::strncmp(line, "best fitness: ", 14) == 0) best = std::string(line + 14);
+  }
+  const int status = pipe ? pclose(pipe) : -1;
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::string rm = "rm -rf " + dir;
+  if (std::system(rm.c_str()) != 0) std::fprintf(stderr, "cannot remove %s\n", dir.c_str());
+  if (status != 0) {
+    std::printf("%s: ahhs-evolve failed:\n%s\n", name.c_str(), output.c_str());
+    return;
+  }
+  if (!best.empty() && best.back() == '\n') best.pop_back();
+  std::printf("%-36s %3d generations: %7.1f s wall (%.2f s per generation); best %s\n",
+              name.c_str(), generations, wall, wall / generations, best.c_str());
+  std::fflush(stdout);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -198,8 +232,42 @@ int main(int argc, char** argv) {
   arena->add_option("--lcm-url", arena_url, "URL for the multi-process arena")
       ->capture_default_str();
   arena->add_option("--seed", seed, "genome and episode seed")->capture_default_str();
+  auto* evolve = app.add_subcommand(
+      "evolve", "whole evolution runs at the paper's scale through ahhs-evolve (minutes)");
+  std::string evolve_task = "all",
+              evolve_url = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+  int evolve_generations = 200, evolve_workers = -1;
+  evolve->add_option("--task", evolve_task, "pendulum, gait-damped, gait-fixed or all")
+      ->check(CLI::IsMember({"pendulum", "gait-damped", "gait-fixed", "all"}))
+      ->capture_default_str();
+  evolve->add_option("--generations", evolve_generations, "generations per run (paper: 200)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  evolve->add_option("--workers", evolve_workers, "local workers (default: one per core)");
+  evolve->add_option("--lcm-url", evolve_url, "LCM URL of the farm")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
+  if (evolve->parsed()) {
+    std::printf("evolution runs through ahhs-evolve, %s workers, seed 1\n",
+                evolve_workers < 0 ? "one per core" : std::to_string(evolve_workers).c_str());
+    const std::string common = " --seed 1";
+    if (evolve_task == "pendulum" || evolve_task == "all")
+      BenchEvolve(
+          "pendulum AHHS2 15 H x 15 R, pop 200",
+          "--scenario pendulum --variant ahhs2 --hormones 15 --rules 15 --population 200" + common,
+          evolve_generations, evolve_url, evolve_workers);
+    if (evolve_task == "pendulum" || evolve_task == "all")
+      BenchEvolve(
+          "pendulum AHHS1 15 H x 60 R, pop 200",
+          "--scenario pendulum --variant ahhs1 --hormones 15 --rules 60 --population 200" + common,
+          evolve_generations, evolve_url, evolve_workers);
+    for (const char* joints : {"damped", "fixed"})
+      if (evolve_task == "all" || evolve_task == std::string("gait-") + joints)
+        BenchEvolve(std::string("gait ") + joints + " AHHS2 5 H x 30 R, pop 20",
+                    std::string("--scenario gait --joints ") + joints +
+                        " --variant ahhs2 --hormones 5 --rules 30 --population 20" + common,
+                    evolve_generations, evolve_url, evolve_workers);
+  }
   if (arena->parsed()) BenchArena(arena_url, seed);
   if (sim->parsed()) {
     namespace as = ahhs::sim;

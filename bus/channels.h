@@ -23,6 +23,8 @@ class ArenaChannels {
   std::string Status(int module) const {
     return p_ + "MODULE" + std::to_string(module) + "/STATUS";
   }
+  // Written by ahhs-replay into its logs only (module_trace_t).
+  std::string Trace(int module) const { return p_ + "MODULE" + std::to_string(module) + "/TRACE"; }
   // Regular expressions matching the per-module channels of every module.
   std::string AnyHinge() const { return p_ + "MODULE[0-9]+/HINGE"; }
   std::string AnyHormone() const { return p_ + "MODULE[0-9]+/HORMONE"; }

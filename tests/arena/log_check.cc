@@ -1,10 +1,12 @@
 // Reads an episode log written by `ahhs-launch --log` (lcm::LogFile) and checks that every tick
-// of every module's SENSORS, HINGE and HORMONE packets is in it.
-//   log_check LOG --arena A --modules N --ticks T
+// of every module's SENSORS, HINGE and HORMONE packets is in it; with --trace (logs of
+// ahhs-replay), SENSORS, HINGE and TRACE.
+//   log_check LOG --arena A --modules N --ticks T [--trace]
 #include <CLI/CLI.hpp>
 #include <ahhs/hinge_command_t.hpp>
 #include <ahhs/hormone_packet_t.hpp>
 #include <ahhs/module_sensors_t.hpp>
+#include <ahhs/module_trace_t.hpp>
 #include <cstdio>
 #include <lcm/lcm-cpp.hpp>
 #include <set>
@@ -21,6 +23,8 @@ int main(int argc, char** argv) {
   app.add_option("--arena", arena)->required();
   app.add_option("--modules", modules)->required();
   app.add_option("--ticks", ticks)->required();
+  bool trace = false;
+  app.add_flag("--trace", trace, "expect TRACE messages instead of hormone packets");
   CLI11_PARSE(app, argc, argv);
 
   lcm::LogFile log(path, "r");
@@ -42,7 +46,12 @@ int main(int argc, char** argv) {
         ahhs::hinge_command_t h;
         if (ahhs::bus::Decode(e->data, static_cast<std::size_t>(e->datalen), &h))
           hinges.insert({m, h.tick});
-      } else if (e->channel == ch.Hormone(m)) {
+      } else if (trace && e->channel == ch.Trace(m)) {
+        ahhs::module_trace_t t;
+        if (ahhs::bus::Decode(e->data, static_cast<std::size_t>(e->datalen), &t) && t.module == m &&
+            static_cast<int>(t.hormones.size()) == t.num_hormones)
+          hormones.insert({m, t.tick});
+      } else if (!trace && e->channel == ch.Hormone(m)) {
         ahhs::hormone_packet_t p;
         if (ahhs::bus::Decode(e->data, static_cast<std::size_t>(e->datalen), &p))
           hormones.insert({m, p.tick});
@@ -58,8 +67,8 @@ int main(int argc, char** argv) {
     }
   }
   std::printf(
-      "log_check: %ld events; %zu sensors, %zu hinge, %zu hormone (module, tick) pairs; %d "
+      "log_check: %ld events; %zu sensors, %zu hinge, %zu %s (module, tick) pairs; %d "
       "incomplete\n",
-      events, sensors.size(), hinges.size(), hormones.size(), bad);
+      events, sensors.size(), hinges.size(), hormones.size(), trace ? "trace" : "hormone", bad);
   return bad == 0 ? 0 : 1;
 }

@@ -179,7 +179,7 @@ EpisodeResult RunFused(const EpisodeSpec& spec) {
   return RunEpisode(bus, spec, pump, [](std::string*) { return true; });
 }
 
-EpisodeResult RunDirectEpisode(const EpisodeSpec& spec) {
+EpisodeResult RunDirectEpisode(const EpisodeSpec& spec, const DirectObserver& observer) {
   auto scenario = sim::MakeScenario(spec.config);
   scenario->Reset(static_cast<std::uint64_t>(spec.seed));
   const int n = scenario->num_compartments();
@@ -212,6 +212,8 @@ EpisodeResult RunDirectEpisode(const EpisodeSpec& spec) {
     organism.Step(inputs);
     for (int c = 0; c < n; ++c) scenario->SetActuators(c, organism.state(c).actuators.data());
     const sim::StepStatus status = scenario->Step();
+    if (observer && status != sim::StepStatus::kFailed)
+      observer({scenario->tick() - 1, scenario.get(), &organism, &sensors});
     if (status == sim::StepStatus::kFailed) {
       EpisodeResult failed{false, 0, 0, scenario->error(), 0};
       failed.episode_failed = true;

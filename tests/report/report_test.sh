@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# ahhs-replay and ahhs-report on small real runs made here (inside a private network namespace):
+# the replay reproduces the stored fitness and records every tick in an LCM log; every figure of
+# the report exists and is not empty; bad input gives a clear message and a non-zero exit.
+set -uo pipefail
+bin=${1:?usage: report_test.sh BIN_DIR}
+[[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$0" "$@"
+url="udpm://239.255.42.80:7771?ttl=0&recv_buf_size=4194304"
+tmp=$(mktemp -d)
+trap 'pkill -KILL -f "$bin/ahhs-(evolve|worker)" 2>/dev/null; rm -rf "$tmp"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+E="$bin/ahhs-evolve"
+common="--population 8 --generations 4 --lcm-url $url --workers 2"
+for seed in 1 2 3; do
+  $E --scenario pendulum --variant ahhs2 --hormones 6 --rules 8 --duration 15 --seed $seed $common --out $tmp/a2-$seed >/dev/null 2>&1 || fail "run a2-$seed"
+  $E --scenario pendulum --variant ahhs1 --hormones 6 --rules 12 --duration 15 --seed $seed $common --out $tmp/a1-$seed >/dev/null 2>&1 || fail "run a1-$seed"
+done
+$E --scenario gait --hormones 3 --rules 8 --duration 3 --seed 1 $common --out $tmp/gait >/dev/null 2>&1 || fail "gait run"
+
+echo "== ahhs-replay reproduces stored fitness"
+for r in a2-1 a1-2 gait; do
+  "$bin/ahhs-replay" $tmp/$r --log $tmp/$r.lcm >$tmp/replay.out 2>&1 || { cat $tmp/replay.out; fail "replay $r"; }
+  grep -q "reproduced exactly" $tmp/replay.out || fail "replay $r: $(cat $tmp/replay.out)"
+done
+"$bin/ahhs-replay" $tmp/a2-1 --generation 2 --individual 5 >$tmp/replay.out || fail "replay of one individual"
+stored=$(sqlite3 $tmp/a2-1/run.sqlite "SELECT printf('%!.17g', fitness) FROM individuals WHERE generation = 2 AND idx = 5")
+grep -q "reproduced exactly" $tmp/replay.out || fail "individual: $(cat $tmp/replay.out)"
+[[ "$(tail -1 $tmp/replay.out)" == "fitness: $stored" ]] || fail "individual fitness $(tail -1 $tmp/replay.out) vs $stored"
+# The log holds every tick of every module: 300 ticks x 2 modules of TRACE, SENSORS and HINGE.
+"$bin/log_check" $tmp/a2-1.lcm --arena AHHS --modules 2 --ticks 300 --trace >$tmp/count.out 2>&1 ||
+  { cat $tmp/count.out; fail "log_check"; }
+grep -q "600 trace (module, tick) pairs; 0 incomplete" $tmp/count.out || fail "trace in the log: $(cat $tmp/count.out)"
+"$bin/log_check" $tmp/gait.lcm --arena AHHS --modules 5 --ticks 60 --trace >/dev/null || fail "gait log"
+
+echo "== ahhs-report"
+"$bin/ahhs-report" $tmp/a2-{1,2,3} $tmp/a1-{1,2,3} $tmp/gait -o $tmp/report >$tmp/report.out 2>&1 ||
+  { cat $tmp/report.out; fail "ahhs-report"; }
+for f in fitness box_best box_speed hormones hinges sensors rules controller; do
+  for ext in png svg; do
+    [[ -s $tmp/report/$f.$ext ]] || fail "missing or empty: $f.$ext"
+  done
+done
+[[ -s $tmp/report/controller.dot && -s $tmp/report/replay.lcm && -s $tmp/report/replay-trace.csv ]] || fail "replay files"
+grep -q "reproduced exactly" $tmp/report/summary.md || fail "summary lacks the replay check"
+grep -q "| pendulum AHHS2-8 | pendulum AHHS1-12 | 3 | 3 |" $tmp/report/summary.md || fail "summary lacks the Wilcoxon table: $(cat $tmp/report/summary.md)"
+[[ "$(head -c 4 $tmp/report/fitness.png | tail -c 3)" == PNG ]] || fail "fitness.png is not a PNG"
+echo "summary: $(wc -l <$tmp/report/summary.md) lines"
+
+echo "== neighbourhood"
+"$bin/ahhs-report" neighbourhood $tmp/a2-1 --mutants 6 -o $tmp/nb >$tmp/nb.out 2>&1 || { cat $tmp/nb.out; fail "neighbourhood"; }
+[[ -s $tmp/nb/neighbourhood.png && -s $tmp/nb/neighbourhood.svg && -s $tmp/nb/controller.png ]] || fail "neighbourhood figures"
+[[ $(wc -l <$tmp/nb/mutants.csv) == 8 ]] || fail "mutants.csv: $(cat $tmp/nb/mutants.csv)"
+"$bin/ahhs-genome" random --variant ahhs1 --hormones 4 --rules 6 --sensors 10 --actuators 2 --seed 3 >$tmp/g.json
+"$bin/ahhs-report" neighbourhood $tmp/g.json --scenario pendulum --duration 5 --mutants 3 -o $tmp/nb2 >/dev/null 2>&1 || fail "neighbourhood of a genome file"
+[[ -s $tmp/nb2/neighbourhood.png ]] || fail "neighbourhood of a genome file: figure"
+
+echo "== bad input"
+mkdir $tmp/notrun
+"$bin/ahhs-report" $tmp/notrun -o $tmp/x >$tmp/err 2>&1 && fail "a non-run was accepted"
+grep -q "is not a run directory" $tmp/err || fail "non-run message: $(cat $tmp/err)"
+mkdir $tmp/corrupt && head -c 4096 /dev/urandom >$tmp/corrupt/run.sqlite
+"$bin/ahhs-report" $tmp/corrupt -o $tmp/x >$tmp/err 2>&1 && fail "a corrupt database was accepted"
+grep -q "not a readable run database" $tmp/err || fail "corrupt message: $(cat $tmp/err)"
+grep -q Traceback $tmp/err && fail "a traceback instead of a message"
+"$bin/ahhs-replay" $tmp/corrupt >$tmp/err 2>&1 && fail "replay of a corrupt run"
+grep -q "not a readable run database" $tmp/err || fail "replay corrupt message: $(cat $tmp/err)"
+"$bin/ahhs-replay" $tmp/a2-1 --generation 99 >$tmp/err 2>&1 && fail "replay of a missing generation"
+grep -q "is not stored" $tmp/err || fail "missing generation message: $(cat $tmp/err)"
+"$bin/ahhs-report" neighbourhood $tmp/nothing.json -o $tmp/x >$tmp/err 2>&1 && fail "missing genome accepted"
+grep -q "no such genome file" $tmp/err || fail "missing genome message: $(cat $tmp/err)"
+echo "PASS"

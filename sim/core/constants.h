@@ -9,7 +9,7 @@ namespace ahhs::sim {
 struct PendulumConstants {
   double control_period = 0.05;                   // s per controller tick
   int ticks = 3000;                               // ticks per episode (150 s)
-  double integration_step = 0.005;                // s, RK4 (10 substeps per tick)
+  double integration_step = 0.01;                 // s, RK4 (5 substeps per tick)
   double gravity = 9.81;                          // m/s^2
   double length = 0.5;                            // m, pivot to point mass (massless rod)
   double pivot_friction = 0.05;                   // 1/s, viscous: d(omega)/dt -= friction * omega

@@ -71,11 +71,12 @@ TEST_CASE("pendulum: released from horizontal, swings with the physical pendulum
         Approx(2 * M_PI * std::sqrt(0.5 / 9.81) * (1 + 0.1745 * 0.1745 / 16)).epsilon(0.01));
 }
 
-TEST_CASE("pendulum: the 5 ms integrator agrees with a fine reference integration",
+TEST_CASE("pendulum: the 10 ms integrator agrees with a fine reference integration",
           "[sim][pendulum]") {
   // Reference: the same equations (spec: cart speed through a first-order lag, phi'' = (g sin
   // phi + a cos phi) / l - friction omega, omega capped) with RK4 at 0.05 ms and the library's
-  // sin and cos. Away from the walls, 10 s of a varying command must agree to 1e-7.
+  // sin and cos. Away from the walls, 10 s of a varying command must agree to 1e-6 (measured:
+  // 4e-7 rad; the sensors' noise is 0.023 of their range).
   PendulumConstants k;
   k.noise = 0;
   PendulumScenario p(Pendulum(), k);
@@ -112,10 +113,10 @@ TEST_CASE("pendulum: the 5 ms integrator agrees with a fine reference integratio
     REQUIRE(std::fabs(ref[0]) < 0.8);  // the walls are never touched
   }
   const auto& st = p.state();
-  CHECK(st.x == Approx(ref[0]).margin(1e-7));
-  CHECK(st.v == Approx(ref[1]).margin(1e-7));
-  CHECK(WrapAngle(st.phi - ref[2]) == Approx(0).margin(1e-7));
-  CHECK(st.omega == Approx(ref[3]).margin(1e-7));
+  CHECK(st.x == Approx(ref[0]).margin(1e-6));
+  CHECK(st.v == Approx(ref[1]).margin(1e-6));
+  CHECK(WrapAngle(st.phi - ref[2]) == Approx(0).margin(1e-6));
+  CHECK(st.omega == Approx(ref[3]).margin(1e-6));
 }
 
 TEST_CASE("pendulum: angular speed is capped at 9 degrees per tick", "[sim][pendulum]") {

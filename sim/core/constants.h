@@ -27,7 +27,7 @@ struct PendulumConstants {
 struct GaitConstants {
   double control_period = 0.05;   // s per controller tick (20 Hz)
   double physics_step = 0.01;     // s, dWorldQuickStep
-  int solver_iterations = 20;     // dWorldSetQuickStepNumIterations
+  int solver_iterations = 14;     // dWorldSetQuickStepNumIterations (docs/scenarios.md)
   double duration = 60.0;         // s per episode
   double gravity = 9.81;          // m/s^2
   double module_size = 0.1;       // m, a module is a cube of this edge, two halves along x

@@ -77,7 +77,7 @@ class Progress {
         static_cast<int>(width * static_cast<double>(done) / static_cast<double>(total));
     std::string bar(static_cast<std::size_t>(filled), '#');
     bar.resize(width, '.');
-    std::printf("\r\033[K generation %d/%d [%s] %zu/%zu  ETA %s%s", generation, generations_,
+    std::printf("\r\033[K generation %d/%d [%s] %zu/%zu  ETA %s%s", generation, generations_ - 1,
                 bar.c_str(), done, total, FormatDuration(eta).c_str(), last_.c_str());
     std::fflush(stdout);
     drawn_ = true;

@@ -216,6 +216,10 @@ void ModuleNode::Poll(std::chrono::microseconds max_wait) {
     wait = std::clamp(left, std::chrono::microseconds(0), max_wait);
   }
   bus_->Handle(wait);
+  Process();
+}
+
+void ModuleNode::Process() {
   while (TryStep(Clock::now())) {
   }
   if (Clock::now() >= next_heartbeat_) PublishStatus(status_);

@@ -48,6 +48,9 @@ class ModuleNode {
 
   // Dispatches messages (waiting at most max_wait) and steps every tick that is ready.
   void Poll(std::chrono::microseconds max_wait);
+  // Poll() without touching the bus: steps what the messages already dispatched allow. For a
+  // caller that handles one shared bus for several nodes (the fused arena).
+  void Process();
 
   bool ready() const { return controller_ != nullptr && have_topology_; }
   std::int64_t episode() const { return episode_; }

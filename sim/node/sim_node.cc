@@ -175,6 +175,10 @@ void SimNode::Poll(std::chrono::microseconds max_wait) {
       wait = std::chrono::microseconds(0);
   }
   bus_->Handle(wait);
+  Process();
+}
+
+void SimNode::Process() {
   if (ReadyToAdvance(Clock::now())) Advance();
 }
 

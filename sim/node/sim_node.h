@@ -51,6 +51,9 @@ class SimNode {
   // Dispatches messages (waiting at most max_wait for one) and advances the episode as far as
   // its clock allows. Never blocks longer than max_wait.
   void Poll(std::chrono::microseconds max_wait);
+  // Poll() without touching the bus: acts on the messages already dispatched. For a caller that
+  // handles one shared bus for several nodes (the fused arena).
+  void Process();
 
   Phase phase() const { return phase_; }
   std::int64_t episode() const { return episode_; }

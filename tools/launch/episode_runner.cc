@@ -169,11 +169,14 @@ EpisodeResult RunFused(const EpisodeSpec& spec) {
     o.arena = spec.arena;
     nodes.push_back(std::make_unique<modules::ModuleNode>(&bus, o));
   }
-  // One memq bus: any Handle() dispatches to every node; each node's Poll steps what it can.
+  // One memq bus: one Handle() dispatches to every node, then each node acts on what it got.
+  // Two rounds per call follow the lockstep (commands -> sim publishes SENSORS -> modules step
+  // and publish HINGE and HORMONE); a Handle per node would cost a syscall each.
   auto pump = [&](std::chrono::microseconds wait) {
-    sim_node.Poll(std::chrono::microseconds(0));
-    for (auto& n : nodes) n->Poll(std::chrono::microseconds(0));
-    fitness_node.Poll(std::chrono::microseconds(0));
+    bus.Handle(std::chrono::microseconds(0));
+    sim_node.Process();
+    bus.Handle(std::chrono::microseconds(0));
+    for (auto& n : nodes) n->Process();
     if (spec.realtime) bus.Handle(std::min(wait, std::chrono::microseconds(1000)));
   };
   return RunEpisode(bus, spec, pump, [](std::string*) { return true; });

@@ -3,7 +3,7 @@
 // worker processes on this host. Runs until SIGTERM or Ctrl-C.
 //
 // Fault injection for tests (docs/development.md): AHHS_WORKER_FAULT=nan makes every result a
-// NaN fitness; AHHS_WORKER_FAULT=exit-after-K exits after K evaluations.
+// NaN fitness.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -101,8 +101,10 @@ int main(int argc, char** argv) {
   if (id.empty()) id = host + ":" + std::to_string(getpid());
   const char* fault = std::getenv("AHHS_WORKER_FAULT");
   const std::string fault_mode = fault ? fault : "";
-  long exit_after = -1;
-  if (fault_mode.rfind("exit-after-", 0) == 0) exit_after = std::atol(fault_mode.c_str() + 11);
+  if (!fault_mode.empty() && fault_mode != "nan") {
+    std::cerr << "ahhs-worker: unknown AHHS_WORKER_FAULT '" << fault_mode << "' (only: nan)\n";
+    return 1;
+  }
   try {
     ev::ArenaEvaluator evaluator(ev::ParseArenaKind(arena), arena_url,
                                  "W" + std::to_string(getpid()));
@@ -117,10 +119,7 @@ int main(int argc, char** argv) {
     });
     if (!quiet)
       std::cerr << "ahhs-worker " << id << ": serving (" << arena << " arena) on " << url << '\n';
-    node.Serve([&] {
-      if (exit_after >= 0 && node.counters().evaluations >= exit_after) std::_Exit(3);
-      return g_stop.load();
-    });
+    node.Serve([&] { return g_stop.load(); });
     const auto& c = node.counters();
     if (!quiet)
       std::cerr << "ahhs-worker " << id << ": " << c.evaluations << " evaluations, " << c.refused

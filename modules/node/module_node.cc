@@ -20,16 +20,6 @@ ModuleNode::ModuleNode(bus::Bus* bus, ModuleNodeOptions options)
   bus::SubscribeTyped<module_sensors_t>(
       *bus_, channels_.Sensors(options_.id),
       [this](const std::string&, const module_sensors_t& m) { OnSensors(m); }, &counters_);
-  bus::SubscribeTyped<hormone_packet_t>(
-      *bus_, channels_.AnyHormone(),
-      [this](const std::string& ch, const hormone_packet_t& m) {
-        if (ch != channels_.Hormone(m.from_module)) {
-          ++stats_.dropped_messages;  // a module speaking for another
-          return;
-        }
-        if (m.to_module == options_.id) OnHormone(m);
-      },
-      &counters_);
   bus::SubscribeTyped<sim_clock_t>(
       *bus_, channels_.SimClock(), [this](const std::string&, const sim_clock_t& m) { OnClock(m); },
       &counters_);
@@ -73,7 +63,7 @@ void ModuleNode::OnGenome(const genome_t& m) {
   sensor_present_ = std::make_unique<bool[]>(static_cast<std::size_t>(controller_->num_sensors()));
   actuator_present_ =
       std::make_unique<bool[]>(static_cast<std::size_t>(controller_->num_actuators()));
-  if (ready()) PublishStatus(module_status_t::READY);
+  if (ready()) announce_ready_ = true;
 }
 
 void ModuleNode::OnTopology(const topology_t& m) {
@@ -88,7 +78,7 @@ void ModuleNode::OnTopology(const topology_t& m) {
   neighbours_.erase(std::unique(neighbours_.begin(), neighbours_.end()), neighbours_.end());
   if (static_cast<int>(neighbours_.size()) > kDefaultPorts) neighbours_.resize(kDefaultPorts);
   have_topology_ = true;
-  if (ready()) PublishStatus(module_status_t::READY);
+  if (ready()) announce_ready_ = true;
 }
 
 void ModuleNode::OnSensors(const module_sensors_t& m) {
@@ -178,16 +168,16 @@ bool ModuleNode::TryStep(Clock::time_point now) {
   Step(*controller_, in, &*state_);
 
   const std::int64_t utime = bus::NowUtime();
-  for (int n : neighbours_) {
-    hormone_packet_t p{};
-    p.utime = utime;
-    p.episode = episode_;
-    p.tick = t;
-    p.from_module = options_.id;
-    p.to_module = n;
-    p.num_hormones = static_cast<std::int16_t>(controller_->num_hormones());
-    p.amounts.assign(state_->outflow.data(), state_->outflow.data() + state_->outflow.size());
-    bus::PublishTyped(*bus_, channels_.Hormone(options_.id), p);
+  if (!neighbours_.empty()) {  // one packet for all neighbours: each gets the same outflow
+    hormone_packet_.utime = utime;
+    hormone_packet_.episode = episode_;
+    hormone_packet_.tick = t;
+    hormone_packet_.from_module = options_.id;
+    hormone_packet_.num_receivers = static_cast<std::int16_t>(neighbours_.size());
+    hormone_packet_.to_modules.assign(neighbours_.begin(), neighbours_.end());
+    hormone_packet_.num_hormones = static_cast<std::int16_t>(controller_->num_hormones());
+    hormone_packet_.amounts.assign(state_->outflow.begin(), state_->outflow.end());
+    bus::PublishTyped(*bus_, channels_.Hormone(options_.id), hormone_packet_);
   }
   hinge_command_t h{};
   h.utime = utime;
@@ -219,7 +209,43 @@ void ModuleNode::Poll(std::chrono::microseconds max_wait) {
   Process();
 }
 
+void ModuleNode::SyncHormoneSubscriptions() {
+  // Only the docked neighbours' HORMONE channels: in one process (memq) every subscription sees
+  // every packet, and decoding all of them cost more than the controllers. Done here, outside
+  // any bus callback, because TOPOLOGY arrives in one.
+  for (auto it = hormone_subscriptions_.begin(); it != hormone_subscriptions_.end();) {
+    if (std::binary_search(neighbours_.begin(), neighbours_.end(), it->first)) {
+      ++it;
+    } else {
+      bus_->Unsubscribe(it->second);
+      it = hormone_subscriptions_.erase(it);
+    }
+  }
+  for (int n : neighbours_) {
+    if (hormone_subscriptions_.count(n)) continue;
+    hormone_subscriptions_[n] = bus::SubscribeTyped<hormone_packet_t>(
+        *bus_, channels_.Hormone(n),
+        [this, n](const std::string&, const hormone_packet_t& m) {
+          if (m.from_module != n) {
+            ++stats_.dropped_messages;  // a module speaking for another
+            return;
+          }
+          if (std::find(m.to_modules.begin(), m.to_modules.end(), options_.id) !=
+              m.to_modules.end())
+            OnHormone(m);
+        },
+        &counters_);
+  }
+}
+
 void ModuleNode::Process() {
+  // Listen to the neighbours before telling anyone we are ready: the first packets follow the
+  // START that our READY allows.
+  SyncHormoneSubscriptions();
+  if (announce_ready_) {
+    announce_ready_ = false;
+    if (ready()) PublishStatus(module_status_t::READY);
+  }
   while (TryStep(Clock::now())) {
   }
   if (Clock::now() >= next_heartbeat_) PublishStatus(status_);

@@ -68,6 +68,7 @@ class ModuleNode {
   bool TryStep(Clock::time_point now);
   void OnClock(const sim_clock_t& msg);
   void PublishStatus(std::int8_t state);
+  void SyncHormoneSubscriptions();
 
   bus::Bus* bus_;
   ModuleNodeOptions options_;
@@ -81,7 +82,10 @@ class ModuleNode {
   std::uint64_t genome_hash_ = 0;
   std::optional<CompartmentState> state_;
   bool have_topology_ = false;
-  std::vector<int> neighbours_;  // sorted ids
+  std::vector<int> neighbours_;               // sorted ids
+  std::map<int, int> hormone_subscriptions_;  // neighbour id -> bus subscription id
+  hormone_packet_t hormone_packet_;           // reused for publishing (no allocation per tick)
+  bool announce_ready_ = false;               // READY goes out from Process(), after subscribing
   std::int64_t next_tick_ = 0;
   std::optional<module_sensors_t> sensors_;  // SENSORS(next_tick_) once it arrived
   Clock::time_point sensors_arrival_;

@@ -65,7 +65,8 @@ int Responder(ahhs::bus::Bus& bus, int burst) {
         pong.episode = m.episode;
         pong.tick = m.tick;
         pong.from_module = 1;
-        pong.to_module = 0;
+        pong.num_receivers = 1;
+        pong.to_modules = {0};
         pong.num_hormones = 2;
         pong.amounts = {m.values[0] * 2.0, static_cast<double>(m.module)};
         ahhs::bus::PublishTyped(bus, kPong, pong);

@@ -42,13 +42,17 @@ TEST_CASE("another type's bytes do not decode", "[codec]") {
 TEST_CASE("hostile array lengths neither crash nor allocate wildly", "[codec]") {
   auto bytes = Encode(ahhs::testing::Fixture<ahhs::hormone_packet_t>());
   ahhs::hormone_packet_t out;
-  // num_hormones sits at offset 40 (see the layout test): make it negative, then huge.
-  bytes[40] = 0xff;
-  bytes[41] = 0xfe;
-  CHECK_FALSE(Decode(bytes.data(), bytes.size(), &out));
-  bytes[40] = 0x7f;
-  bytes[41] = 0xff;
-  CHECK_FALSE(Decode(bytes.data(), bytes.size(), &out));
+  // num_receivers sits at offset 36 and num_hormones at 46 (see the layout test): make each
+  // negative, then huge.
+  for (std::size_t at : {36, 46}) {
+    auto copy = bytes;
+    copy[at] = 0xff;
+    copy[at + 1] = 0xfe;
+    CHECK_FALSE(Decode(copy.data(), copy.size(), &out));
+    copy[at] = 0x7f;
+    copy[at + 1] = 0xff;
+    CHECK_FALSE(Decode(copy.data(), copy.size(), &out));
+  }
 
   // A string length field that lies (module_status_t.message is the last field).
   auto status = Encode(ahhs::testing::Fixture<ahhs::module_status_t>());

@@ -69,17 +69,20 @@ TEST_CASE("wire layout of hormone_packet_t matches the LCM spec by hand", "[lcmt
     for (int k = 0; k < 8; ++k) v = (v << 8) | b[at + static_cast<std::size_t>(k)];
     return v;
   };
-  REQUIRE(b.size() == 8 + 8 + 8 + 8 + 4 + 4 + 2 + 3 * 8);
+  REQUIRE(b.size() == 8 + 8 + 8 + 8 + 4 + 2 + 2 * 4 + 2 + 3 * 8);
   CHECK(be64(0) == static_cast<std::uint64_t>(ahhs::hormone_packet_t::getHash()));
   CHECK(be64(8) == 1700000000000003ULL);  // utime
   CHECK(be64(16) == 42U);                 // episode
   CHECK(be64(24) == 7U);                  // tick
   CHECK(b[32] == 0);
   CHECK(b[35] == 1);  // from_module (int32)
-  CHECK(b[39] == 2);  // to_module
-  CHECK(b[40] == 0);
-  CHECK(b[41] == 3);                         // num_hormones (int16)
-  CHECK(be64(42) == 0x3fc0000000000000ULL);  // 0.125 as IEEE-754 double
-  CHECK(be64(50) == 0);                      // 0.0
-  CHECK(be64(58) == 0x3fe0000000000000ULL);  // 0.5
+  CHECK(b[36] == 0);
+  CHECK(b[37] == 2);  // num_receivers (int16)
+  CHECK(b[41] == 0);  // to_modules[0] (int32)
+  CHECK(b[45] == 2);  // to_modules[1]
+  CHECK(b[46] == 0);
+  CHECK(b[47] == 3);                         // num_hormones (int16)
+  CHECK(be64(48) == 0x3fc0000000000000ULL);  // 0.125 as IEEE-754 double
+  CHECK(be64(56) == 0);                      // 0.0
+  CHECK(be64(64) == 0x3fe0000000000000ULL);  // 0.5
 }

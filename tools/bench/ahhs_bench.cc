@@ -19,6 +19,7 @@
 #include "sim/core/drive.h"
 #include "sim/core/scenario.h"
 #include "tools/launch/episode_runner.h"
+#include "tools/launch/process_arena.h"
 
 namespace am = ahhs::modules;
 using Clock = std::chrono::steady_clock;
@@ -105,17 +106,30 @@ void BenchSim(const ahhs::sim::ScenarioConfig& config, const char* drive_name, i
       1e3 * walls.back(), sim->sim_time() / median, fitness);
 }
 
-void BenchArena(const std::string& url, std::uint64_t seed) {
+// Median wall time (s) of `repeats` calls of f() -> fitness; the fitness of the last call.
+template <class F>
+std::pair<double, double> MedianWall(int repeats, F&& f) {
+  std::vector<double> walls;
+  double fitness = 0;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = Clock::now();
+    fitness = f();
+    walls.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  std::sort(walls.begin(), walls.end());
+  return {walls[walls.size() / 2], fitness};
+}
+
+// One gait episode four ways. The multi-process arena is timed as evolution uses it (processes
+// already running, as in `ahhs-worker --arena processes`); starting them and a whole
+// `ahhs-launch` run are printed apart.
+void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   namespace as = ahhs::sim;
+  namespace al = ahhs::launch;
   as::ScenarioConfig config;  // gait, 5 modules, damped, 60 s at 20 Hz
   am::Rng rng(seed);
   const am::Genome genome = am::RandomGenome({am::Variant::kAhhs2, 5, 30, 4, 1}, rng);
-  auto time_it = [](auto&& f) {
-    const auto t0 = Clock::now();
-    const double fitness = f();
-    return std::make_pair(std::chrono::duration<double>(Clock::now() - t0).count(), fitness);
-  };
-  const auto physics = time_it([&] {
+  const auto physics = MedianWall(repeats, [&] {
     auto sim = as::MakeScenario(config);
     sim->Reset(seed);
     double a[1];
@@ -128,22 +142,46 @@ void BenchArena(const std::string& url, std::uint64_t seed) {
     }
     return sim->Fitness();
   });
-  ahhs::launch::EpisodeSpec spec;
+  al::EpisodeSpec spec;
   spec.config = config;
   spec.genome = genome;
   spec.seed = static_cast<std::int64_t>(seed);
-  const auto direct = time_it([&] { return ahhs::launch::RunDirect(spec); });
-  const auto fused = time_it([&] { return ahhs::launch::RunFused(spec).fitness; });
-  // Multi-process: ahhs-launch with the sim, 5 modules and the fitness monitor as processes.
+  const auto direct = MedianWall(repeats, [&] { return al::RunDirect(spec); });
+  const auto fused = MedianWall(repeats, [&] { return al::RunFused(spec).fitness; });
+
+  // Multi-process, warm: sim, 5 modules and the fitness monitor as long-lived processes.
+  std::pair<double, double> warm{std::nan(""), std::nan("")};
+  double start_s = std::nan("");
+  std::string failure;
+  try {
+    const auto t0 = Clock::now();
+    al::ProcessArenaOptions options;
+    options.url = url;
+    options.arena = "AHHSBENCH" + std::to_string(getpid());
+    options.num_modules = config.num_modules;
+    al::ProcessArena processes(options);
+    start_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    std::int64_t episode = 0;
+    warm = MedianWall(repeats, [&] {
+      al::EpisodeSpec next = spec;
+      next.episode = ++episode;  // every episode on the bus has its own id
+      const auto r = processes.Run(next, [](std::string*) { return true; });
+      if (!r.ok) failure = r.error;
+      return r.ok ? r.fitness : std::nan("");
+    });
+  } catch (const std::exception& e) {
+    failure = e.what();
+  }
+  // Multi-process, cold: one whole ahhs-launch run (process start, handshake, episode, exit).
   char path[] = "/tmp/ahhs-bench-genome-XXXXXX";
   const int fd = mkstemp(path);
   if (fd >= 0) close(fd);
   am::SaveGenomeFile(path, genome);
   const std::string out = std::string(path) + ".out";
-  const std::string cmd = ahhs::launch::ExecutableDir() + "/ahhs-launch --scenario gait --genome " +
-                          path + " --seed " + std::to_string(seed) + " --lcm-url '" + url + "' > " +
-                          out + " 2>/dev/null";
-  const auto processes = time_it([&] {
+  const std::string cmd = al::ExecutableDir() + "/ahhs-launch --scenario gait --genome " + path +
+                          " --seed " + std::to_string(seed) + " --lcm-url '" + url + "' > " + out +
+                          " 2>/dev/null";
+  const auto cold = MedianWall(1, [&] {
     if (std::system(cmd.c_str()) != 0) return std::nan("");
     std::ifstream in(out);
     std::string line, last;
@@ -152,21 +190,25 @@ void BenchArena(const std::string& url, std::uint64_t seed) {
   });
   std::remove(path);
   std::remove(out.c_str());
-  std::printf("gait, 5 modules, damped, 60 s at 20 Hz, AHHS2 5 hormones x 30 rules, seed %llu\n",
-              static_cast<unsigned long long>(seed));
+  std::printf(
+      "gait, 5 modules, damped, 60 s at 20 Hz, AHHS2 5 hormones x 30 rules, seed %llu, median "
+      "of %d\n",
+      static_cast<unsigned long long>(seed), repeats);
   std::printf("  physics only (wave drive)      %7.3f s\n", physics.first);
   std::printf("  physics + controllers, no bus  %7.3f s   fitness %.17g\n", direct.first,
               direct.second);
   std::printf(
       "  fused arena (memq)             %7.3f s   fitness %.17g   %.2fx physics+controllers\n",
       fused.first, fused.second, fused.first / direct.first);
-  std::printf(
-      "  multi-process arena (udpm)     %7.3f s   fitness %.17g   %.2fx fused (process start "
-      "included)\n",
-      processes.first, processes.second, processes.first / fused.first);
-  if (std::isnan(processes.second))
+  std::printf("  multi-process arena (udpm)     %7.3f s   fitness %.17g   %.2fx fused\n",
+              warm.first, warm.second, warm.first / fused.first);
+  std::printf("    (starting its 7 processes    %7.3f s, once per arena)\n", start_s);
+  std::printf("  ahhs-launch, whole run         %7.3f s   fitness %.17g   %.2fx fused\n",
+              cold.first, cold.second, cold.first / fused.first);
+  if (!failure.empty() || std::isnan(cold.second))
     std::printf(
-        "  (the multi-process run failed: run under tools/ahhs-netns, or give --lcm-url)\n");
+        "  (a multi-process run failed%s%s: run under tools/ahhs-netns, or give --lcm-url)\n",
+        failure.empty() ? "" : ": ", failure.c_str());
 }
 
 // One evolution run through ahhs-evolve (real worker processes, real LCM traffic, the SQLite
@@ -232,6 +274,10 @@ int main(int argc, char** argv) {
   arena->add_option("--lcm-url", arena_url, "URL for the multi-process arena")
       ->capture_default_str();
   arena->add_option("--seed", seed, "genome and episode seed")->capture_default_str();
+  int arena_repeats = 3;
+  arena->add_option("--repeats", arena_repeats, "repeats of each (the median is reported)")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
   auto* evolve = app.add_subcommand(
       "evolve", "whole evolution runs at the paper's scale through ahhs-evolve (minutes)");
   std::string evolve_task = "all",
@@ -268,7 +314,7 @@ int main(int argc, char** argv) {
                         " --variant ahhs2 --hormones 5 --rules 30 --population 20" + common,
                     evolve_generations, evolve_url, evolve_workers);
   }
-  if (arena->parsed()) BenchArena(arena_url, seed);
+  if (arena->parsed()) BenchArena(arena_url, seed, arena_repeats);
   if (sim->parsed()) {
     namespace as = ahhs::sim;
     std::printf("physics-only episodes, median of %d, seed %llu\n", sim_repeats,

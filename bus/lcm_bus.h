@@ -1,6 +1,9 @@
 // Bus over LCM, for any LCM URL: udpm://GROUP:PORT?ttl=0&recv_buf_size=N, memq://, file://...
+// Not thread-safe: one thread publishes and handles (with memq:// the bus counts what it
+// published so that Handle() never waits in select() for a message it knows is queued).
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -39,11 +42,16 @@ class LcmBus final : public Bus {
     LcmBus* bus = nullptr;
   };
   static void OnMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel, Entry* entry);
+  static void Ignore(const lcm::ReceiveBuffer* rbuf, const std::string& channel, LcmBus* bus);
+  int HandleQueued();  // memq:// only
 
   std::string url_;
   std::unique_ptr<lcm::LCM> lcm_;
   std::map<int, std::unique_ptr<Entry>> entries_;
   int next_id_ = 1;
+  bool memq_ = false;                // memq://: one thread publishes and handles
+  std::int64_t memq_unhandled_ = 0;  // memq://: messages published and not yet handled
+  bool delivered_ = false;           // the message being handled reached one of our handlers
   BusStats stats_;
 };
 

@@ -90,3 +90,25 @@ TEST_CASE("unsubscribe stops delivery; handle times out when idle", "[bus]") {
 TEST_CASE("a bad URL is a clear error", "[bus]") {
   CHECK_THROWS_AS(LcmBus("nosuchprovider://x"), ahhs::bus::BusError);
 }
+
+TEST_CASE("memq: what handlers publish is handled in the same call, nothing is left behind",
+          "[bus]") {
+  // The memq bus counts what it published instead of asking select() per message; a chain of
+  // replies and messages nobody hears must neither block Handle() nor stay queued.
+  LcmBus bus("memq://");
+  int pings = 0, pongs = 0;
+  bus.Subscribe("PING", [&](const std::string&, const std::uint8_t*, std::size_t) {
+    ++pings;
+    bus.Publish("NOBODY", "x", 1);
+    bus.Publish("PONG", "y", 1);
+  });
+  bus.Subscribe("PONG", [&](const std::string&, const std::uint8_t*, std::size_t) { ++pongs; });
+  for (int k = 0; k < 100; ++k) bus.Publish("PING", "p", 1);
+  CHECK(bus.Handle(0us) == 200);  // 100 pings + 100 pongs; NOBODY's are not dispatches
+  CHECK(pings == 100);
+  CHECK(pongs == 100);
+  CHECK(bus.Handle(0us) == 0);
+  bus.Publish("PONG", "z", 1);
+  CHECK(bus.Handle(0us) == 1);
+  CHECK(pongs == 101);
+}

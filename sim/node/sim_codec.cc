@@ -4,54 +4,64 @@
 
 namespace ahhs::sim {
 
+void FillSensorsMessage(const Scenario& scenario, int module, std::int64_t episode,
+                        module_sensors_t* m) {
+  m->episode = episode;
+  m->tick = scenario.tick();
+  m->module = module;
+  m->sim_time = scenario.sim_time();
+  const int n = scenario.num_sensors();
+  m->num_sensors = static_cast<std::int16_t>(n);
+  m->values.resize(static_cast<std::size_t>(n));
+  scenario.ReadSensors(module, m->values.data());
+  m->present.resize(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j)
+    m->present[static_cast<std::size_t>(j)] = scenario.sensor_owned(module, j);
+  m->hinge_angle = scenario.HingeAngle(module);
+  m->num_actuators = static_cast<std::int16_t>(scenario.num_actuators());
+  m->actuator_present.resize(static_cast<std::size_t>(scenario.num_actuators()));
+  for (int a = 0; a < scenario.num_actuators(); ++a)
+    m->actuator_present[static_cast<std::size_t>(a)] = scenario.actuator_owned(module, a);
+}
+
 module_sensors_t SensorsMessage(const Scenario& scenario, int module, std::int64_t episode) {
   module_sensors_t m{};
-  m.episode = episode;
-  m.tick = scenario.tick();
-  m.module = module;
-  m.sim_time = scenario.sim_time();
-  const int n = scenario.num_sensors();
-  m.num_sensors = static_cast<std::int16_t>(n);
-  m.values.resize(static_cast<std::size_t>(n));
-  scenario.ReadSensors(module, m.values.data());
-  m.present.resize(static_cast<std::size_t>(n));
-  for (int j = 0; j < n; ++j)
-    m.present[static_cast<std::size_t>(j)] = scenario.sensor_owned(module, j);
-  m.hinge_angle = scenario.HingeAngle(module);
-  m.num_actuators = static_cast<std::int16_t>(scenario.num_actuators());
-  for (int a = 0; a < scenario.num_actuators(); ++a)
-    m.actuator_present.push_back(scenario.actuator_owned(module, a));
+  FillSensorsMessage(scenario, module, episode, &m);
   return m;
+}
+
+void FillStateMessage(const std::vector<BodyState>& bodies, std::int64_t episode, std::int64_t tick,
+                      double sim_time, sim_state_t* m) {
+  m->episode = episode;
+  m->tick = tick;
+  m->sim_time = sim_time;
+  m->num_bodies = static_cast<std::int16_t>(bodies.size());
+  m->module.clear();
+  m->shape.clear();
+  for (auto* v :
+       {&m->px, &m->py, &m->pz, &m->qw, &m->qx, &m->qy, &m->qz, &m->sx, &m->sy, &m->sz, &m->mass})
+    v->clear();
+  for (const BodyState& b : bodies) {
+    m->module.push_back(b.module);
+    m->shape.push_back(static_cast<std::int8_t>(b.shape));
+    m->px.push_back(b.position[0]);
+    m->py.push_back(b.position[1]);
+    m->pz.push_back(b.position[2]);
+    m->qw.push_back(b.quaternion[0]);
+    m->qx.push_back(b.quaternion[1]);
+    m->qy.push_back(b.quaternion[2]);
+    m->qz.push_back(b.quaternion[3]);
+    m->sx.push_back(b.size[0]);
+    m->sy.push_back(b.size[1]);
+    m->sz.push_back(b.size[2]);
+    m->mass.push_back(b.mass);
+  }
 }
 
 sim_state_t StateMessage(const std::vector<BodyState>& bodies, std::int64_t episode,
                          std::int64_t tick, double sim_time) {
   sim_state_t m{};
-  m.episode = episode;
-  m.tick = tick;
-  m.sim_time = sim_time;
-  m.num_bodies = static_cast<std::int16_t>(bodies.size());
-  // Reserved once: a state goes out twice per tick, and growing 13 arrays costs more than
-  // filling them.
-  for (auto* v : {&m.px, &m.py, &m.pz, &m.qw, &m.qx, &m.qy, &m.qz, &m.sx, &m.sy, &m.sz, &m.mass})
-    v->reserve(bodies.size());
-  m.module.reserve(bodies.size());
-  m.shape.reserve(bodies.size());
-  for (const BodyState& b : bodies) {
-    m.module.push_back(b.module);
-    m.shape.push_back(static_cast<std::int8_t>(b.shape));
-    m.px.push_back(b.position[0]);
-    m.py.push_back(b.position[1]);
-    m.pz.push_back(b.position[2]);
-    m.qw.push_back(b.quaternion[0]);
-    m.qx.push_back(b.quaternion[1]);
-    m.qy.push_back(b.quaternion[2]);
-    m.qz.push_back(b.quaternion[3]);
-    m.sx.push_back(b.size[0]);
-    m.sy.push_back(b.size[1]);
-    m.sz.push_back(b.size[2]);
-    m.mass.push_back(b.mass);
-  }
+  FillStateMessage(bodies, episode, tick, sim_time, &m);
   return m;
 }
 

@@ -16,6 +16,12 @@ namespace ahhs::sim {
 module_sensors_t SensorsMessage(const Scenario& scenario, int module, std::int64_t episode);
 sim_state_t StateMessage(const std::vector<BodyState>& bodies, std::int64_t episode,
                          std::int64_t tick, double sim_time);
+// The same, filling *m in place: its arrays keep their capacity, so a sim that reuses one
+// message per kind allocates nothing per tick. utime is left as it was.
+void FillSensorsMessage(const Scenario& scenario, int module, std::int64_t episode,
+                        module_sensors_t* m);
+void FillStateMessage(const std::vector<BodyState>& bodies, std::int64_t episode, std::int64_t tick,
+                      double sim_time, sim_state_t* m);
 topology_t TopologyMessage(const Scenario& scenario, std::int64_t episode);
 
 // Validates a RESET and turns it into a scenario config; returns "" or why it is refused.

@@ -227,9 +227,9 @@ void SimNode::PublishTickStart() {
     tick_deadline_ = now + options_.lockstep_timeout;
   }
   for (int c = 0; c < scenario_->num_compartments(); ++c) {
-    auto m = SensorsMessage(*scenario_, c, episode_);
-    m.utime = bus::NowUtime();
-    bus::PublishTyped(*bus_, channels_.Sensors(c), m);
+    FillSensorsMessage(*scenario_, c, episode_, &sensors_msg_);
+    sensors_msg_.utime = bus::NowUtime();
+    bus::PublishTyped(*bus_, channels_.Sensors(c), sensors_msg_);
   }
   PublishClock(phase_ == Phase::kPaused ? sim_clock_t::PAUSED : sim_clock_t::RUNNING);
   if (realtime_ && scenario_->tick() % 20 == 0) {  // lets a late module learn the docking
@@ -253,9 +253,9 @@ void SimNode::PublishClock(std::int8_t run_state) {
 
 void SimNode::PublishState(double sim_time) {
   scenario_->Bodies(&bodies_);
-  auto m = StateMessage(bodies_, episode_, scenario_->tick(), sim_time);
-  m.utime = bus::NowUtime();
-  bus::PublishTyped(*bus_, channels_.SimState(), m);
+  FillStateMessage(bodies_, episode_, scenario_->tick(), sim_time, &state_msg_);
+  state_msg_.utime = bus::NowUtime();
+  bus::PublishTyped(*bus_, channels_.SimState(), state_msg_);
 }
 
 void SimNode::Finish(StepStatus status) {

@@ -99,6 +99,8 @@ class SimNode {
   int commands_this_tick_ = 0;
   Clock::time_point tick_deadline_;  // lockstep timeout / real-time tick end
   Clock::time_point tick_start_;     // when the current tick's SENSORS went out
+  module_sensors_t sensors_msg_;     // reused every tick (no allocation once warm)
+  sim_state_t state_msg_;
   double next_state_time_ = 0;
   std::vector<BodyState> bodies_;  // scratch
 };

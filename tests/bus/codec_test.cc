@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <random>
 
+#include "bus/typed.h"
 #include "tests/fixtures/messages.h"
 
 using ahhs::bus::Decode;
@@ -83,4 +84,70 @@ TEST_CASE("random garbage never decodes and never crashes", "[codec]") {
   }
   // Exactly-consumed random payloads are astronomically unlikely.
   CHECK(decoded == 0);
+}
+
+namespace {
+// Decodes `full` and then `empty` into one object, as a typed subscription does.
+template <class Msg>
+Msg DecodeTwiceIntoOne(const Msg& full, const Msg& empty) {
+  Msg reused;
+  const auto a = Encode(full), b = Encode(empty);
+  ahhs::bus::ClearForDecode(&reused);
+  REQUIRE(Decode(a.data(), a.size(), &reused));
+  ahhs::bus::ClearForDecode(&reused);
+  REQUIRE(Decode(b.data(), b.size(), &reused));
+  return reused;
+}
+}  // namespace
+
+TEST_CASE("a reused message keeps nothing of the previous one (zero-length arrays)", "[codec]") {
+  // lcm-gen's decoder does not touch an array whose length is 0: ClearForDecode must empty
+  // every array of the per-tick types, or a receiver would see the last message's elements.
+  auto hormone = ahhs::testing::Fixture<ahhs::hormone_packet_t>();
+  auto no_hormone = hormone;
+  no_hormone.num_receivers = 0;
+  no_hormone.to_modules.clear();
+  no_hormone.num_hormones = 0;
+  no_hormone.amounts.clear();
+  const auto h = DecodeTwiceIntoOne(hormone, no_hormone);
+  CHECK(h.to_modules.empty());
+  CHECK(h.amounts.empty());
+
+  auto hinge = ahhs::testing::Fixture<ahhs::hinge_command_t>();
+  auto no_hinge = hinge;
+  no_hinge.num_actuators = 0;
+  no_hinge.values.clear();
+  no_hinge.present.clear();
+  const auto c = DecodeTwiceIntoOne(hinge, no_hinge);
+  CHECK(c.values.empty());
+  CHECK(c.present.empty());
+
+  auto sensors = ahhs::testing::Fixture<ahhs::module_sensors_t>();
+  auto no_sensors = sensors;
+  no_sensors.num_sensors = 0;
+  no_sensors.values.clear();
+  no_sensors.present.clear();
+  no_sensors.num_actuators = 0;
+  no_sensors.actuator_present.clear();
+  const auto s = DecodeTwiceIntoOne(sensors, no_sensors);
+  CHECK(s.values.empty());
+  CHECK(s.present.empty());
+  CHECK(s.actuator_present.empty());
+
+  auto state = ahhs::testing::Fixture<ahhs::sim_state_t>();
+  REQUIRE(state.num_bodies > 0);
+  ahhs::sim_state_t no_state = state;
+  no_state.num_bodies = 0;
+  for (auto* v :
+       {&no_state.px, &no_state.py, &no_state.pz, &no_state.qw, &no_state.qx, &no_state.qy,
+        &no_state.qz, &no_state.sx, &no_state.sy, &no_state.sz, &no_state.mass})
+    v->clear();
+  no_state.module.clear();
+  no_state.shape.clear();
+  const auto st = DecodeTwiceIntoOne(state, no_state);
+  for (const auto* v :
+       {&st.px, &st.py, &st.pz, &st.qw, &st.qx, &st.qy, &st.qz, &st.sx, &st.sy, &st.sz, &st.mass})
+    CHECK(v->empty());
+  CHECK(st.module.empty());
+  CHECK(st.shape.empty());
 }

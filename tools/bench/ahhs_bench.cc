@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <vector>
 
 #include "modules/core/genome_json.h"
@@ -106,30 +107,31 @@ void BenchSim(const ahhs::sim::ScenarioConfig& config, const char* drive_name, i
       1e3 * walls.back(), sim->sim_time() / median, fitness);
 }
 
-// Median wall time (s) of `repeats` calls of f() -> fitness; the fitness of the last call.
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? std::nan("") : v[v.size() / 2];
+}
+
+// Wall time (s) of one call of f() -> fitness, and that fitness.
 template <class F>
-std::pair<double, double> MedianWall(int repeats, F&& f) {
-  std::vector<double> walls;
-  double fitness = 0;
-  for (int r = 0; r < repeats; ++r) {
-    const auto t0 = Clock::now();
-    fitness = f();
-    walls.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-  std::sort(walls.begin(), walls.end());
-  return {walls[walls.size() / 2], fitness};
+std::pair<double, double> Timed(F&& f) {
+  const auto t0 = Clock::now();
+  const double fitness = f();
+  return {std::chrono::duration<double>(Clock::now() - t0).count(), fitness};
 }
 
 // One gait episode four ways. The multi-process arena is timed as evolution uses it (processes
 // already running, as in `ahhs-worker --arena processes`); starting them and a whole
-// `ahhs-launch` run are printed apart.
+// `ahhs-launch` run are printed apart. The four are timed in rounds, one after the other, and
+// the ratios are taken within a round: this machine's speed drifts by tens of per cent over
+// seconds, which would otherwise show up as a ratio.
 void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   namespace as = ahhs::sim;
   namespace al = ahhs::launch;
   as::ScenarioConfig config;  // gait, 5 modules, damped, 60 s at 20 Hz
   am::Rng rng(seed);
   const am::Genome genome = am::RandomGenome({am::Variant::kAhhs2, 5, 30, 4, 1}, rng);
-  const auto physics = MedianWall(repeats, [&] {
+  auto physics_only = [&] {
     auto sim = as::MakeScenario(config);
     sim->Reset(seed);
     double a[1];
@@ -141,37 +143,51 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
       if (sim->Step() != as::StepStatus::kRunning) break;
     }
     return sim->Fitness();
-  });
+  };
   al::EpisodeSpec spec;
   spec.config = config;
   spec.genome = genome;
   spec.seed = static_cast<std::int64_t>(seed);
-  const auto direct = MedianWall(repeats, [&] { return al::RunDirect(spec); });
-  const auto fused = MedianWall(repeats, [&] { return al::RunFused(spec).fitness; });
 
-  // Multi-process, warm: sim, 5 modules and the fitness monitor as long-lived processes.
-  std::pair<double, double> warm{std::nan(""), std::nan("")};
+  std::vector<double> physics, direct, fused, warm, fused_ratio, warm_ratio;
+  double direct_fitness = 0, fused_fitness = 0, warm_fitness = std::nan("");
   double start_s = std::nan("");
   std::string failure;
-  try {
+  std::unique_ptr<al::ProcessArena> processes;
+  try {  // sim, 5 modules and the fitness monitor as long-lived processes
     const auto t0 = Clock::now();
     al::ProcessArenaOptions options;
     options.url = url;
     options.arena = "AHHSBENCH" + std::to_string(getpid());
     options.num_modules = config.num_modules;
-    al::ProcessArena processes(options);
+    processes = std::make_unique<al::ProcessArena>(options);
     start_s = std::chrono::duration<double>(Clock::now() - t0).count();
-    std::int64_t episode = 0;
-    warm = MedianWall(repeats, [&] {
-      al::EpisodeSpec next = spec;
-      next.episode = ++episode;  // every episode on the bus has its own id
-      const auto r = processes.Run(next, [](std::string*) { return true; });
-      if (!r.ok) failure = r.error;
-      return r.ok ? r.fitness : std::nan("");
-    });
   } catch (const std::exception& e) {
     failure = e.what();
   }
+  for (int r = 0; r < repeats; ++r) {
+    physics.push_back(Timed(physics_only).first);
+    const auto d = Timed([&] { return al::RunDirect(spec); });
+    const auto f = Timed([&] { return al::RunFused(spec).fitness; });
+    direct.push_back(d.first);
+    fused.push_back(f.first);
+    fused_ratio.push_back(f.first / d.first);
+    direct_fitness = d.second;
+    fused_fitness = f.second;
+    if (processes && failure.empty()) {
+      const auto w = Timed([&] {
+        al::EpisodeSpec next = spec;
+        next.episode = r + 1;  // every episode on the bus has its own id
+        const auto result = processes->Run(next, [](std::string*) { return true; });
+        if (!result.ok) failure = result.error;
+        return result.ok ? result.fitness : std::nan("");
+      });
+      warm.push_back(w.first);
+      warm_ratio.push_back(w.first / f.first);
+      warm_fitness = w.second;
+    }
+  }
+  processes.reset();
   // Multi-process, cold: one whole ahhs-launch run (process start, handshake, episode, exit).
   char path[] = "/tmp/ahhs-bench-genome-XXXXXX";
   const int fd = mkstemp(path);
@@ -181,7 +197,7 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   const std::string cmd = al::ExecutableDir() + "/ahhs-launch --scenario gait --genome " + path +
                           " --seed " + std::to_string(seed) + " --lcm-url '" + url + "' > " + out +
                           " 2>/dev/null";
-  const auto cold = MedianWall(1, [&] {
+  const auto cold = Timed([&] {
     if (std::system(cmd.c_str()) != 0) return std::nan("");
     std::ifstream in(out);
     std::string line, last;
@@ -192,19 +208,19 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   std::remove(out.c_str());
   std::printf(
       "gait, 5 modules, damped, 60 s at 20 Hz, AHHS2 5 hormones x 30 rules, seed %llu, median "
-      "of %d\n",
+      "of %d rounds\n",
       static_cast<unsigned long long>(seed), repeats);
-  std::printf("  physics only (wave drive)      %7.3f s\n", physics.first);
-  std::printf("  physics + controllers, no bus  %7.3f s   fitness %.17g\n", direct.first,
-              direct.second);
+  std::printf("  physics only (wave drive)      %7.3f s\n", Median(physics));
+  std::printf("  physics + controllers, no bus  %7.3f s   fitness %.17g\n", Median(direct),
+              direct_fitness);
   std::printf(
       "  fused arena (memq)             %7.3f s   fitness %.17g   %.2fx physics+controllers\n",
-      fused.first, fused.second, fused.first / direct.first);
+      Median(fused), fused_fitness, Median(fused_ratio));
   std::printf("  multi-process arena (udpm)     %7.3f s   fitness %.17g   %.2fx fused\n",
-              warm.first, warm.second, warm.first / fused.first);
+              Median(warm), warm_fitness, Median(warm_ratio));
   std::printf("    (starting its 7 processes    %7.3f s, once per arena)\n", start_s);
   std::printf("  ahhs-launch, whole run         %7.3f s   fitness %.17g   %.2fx fused\n",
-              cold.first, cold.second, cold.first / fused.first);
+              cold.first, cold.second, cold.first / Median(fused));
   if (!failure.empty() || std::isnan(cold.second))
     std::printf(
         "  (a multi-process run failed%s%s: run under tools/ahhs-netns, or give --lcm-url)\n",

@@ -298,7 +298,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   sim->add_option("--seed", seed, "first episode seed")->capture_default_str();
   int sim_seeds = 1;
-  sim->add_option("--seeds", sim_seeds, "seeds seed, seed+1, ... (the median over them is reported)")
+  sim->add_option("--seeds", sim_seeds,
+                  "seeds seed, seed+1, ... (the median over them is reported)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   auto* arena =
@@ -350,10 +351,10 @@ int main(int argc, char** argv) {
   if (arena->parsed()) BenchArena(arena_url, seed, arena_repeats);
   if (sim->parsed()) {
     namespace as = ahhs::sim;
-    std::printf("physics-only episodes, median of %d runs per seed, seeds %llu-%llu\n",
-                sim_repeats, static_cast<unsigned long long>(seed),
-                static_cast<unsigned long long>(seed) + static_cast<unsigned long long>(sim_seeds) -
-                    1);
+    std::printf(
+        "physics-only episodes, median of %d runs per seed, seeds %llu-%llu\n", sim_repeats,
+        static_cast<unsigned long long>(seed),
+        static_cast<unsigned long long>(seed) + static_cast<unsigned long long>(sim_seeds) - 1);
     for (const char* drive : {"wave", "zero"}) {
       for (as::Joints joints : {as::Joints::kDamped, as::Joints::kFixed}) {
         as::ScenarioConfig gait;

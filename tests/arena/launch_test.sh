@@ -2,8 +2,8 @@
 # ahhs-launch end to end, inside a private network namespace:
 #  1. fused and process arenas give bit-identical fitness (pendulum, gait; AHHS1, AHHS2; seeds);
 #  2. a genome of the wrong shape is refused;
-#  3. --log records every tick of every module; replaying the log into a fresh ahhs-fitness
-#     gives the live fitness;
+#  3. --log records every tick of every module (ahhs-logger); replaying the log into a fresh
+#     ahhs-fitness gives the live fitness; --logger lcm-logger also records;
 #  4. a module killed mid-episode ends the episode with a clear error within seconds, no orphans;
 #  5. 5 % of messages dropped: the episode completes and reports what was lost;
 #  6. garbage on every channel: counted, ignored, fitness unchanged;
@@ -45,6 +45,13 @@ lcm-logplayer --lcm-url="$url" $tmp/ep.log
 wait $fp || fail "replay fitness monitor"
 echo "live $(fit $tmp/live.out) replayed $(fit $tmp/replay.out)"
 [[ "$(fit $tmp/live.out)" == "$(fit $tmp/replay.out)" ]] || fail "replayed fitness differs"
+# Debian's lcm-logger as the recorder: the run works and writes a log (it may lose messages, so
+# completeness is not checked; docs/protocol.md).
+"$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 2 --lcm-url "$url" --log $tmp/lcm-logger.log \
+  --logger lcm-logger >/dev/null 2>&1 || fail "run with lcm-logger"
+[[ -s $tmp/lcm-logger.log ]] || fail "lcm-logger wrote no log"
+if "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --log $tmp/x.log --logger tee 2>$tmp/err; then fail "unknown logger accepted"; fi
+grep -q "logger" $tmp/err || fail "logger message: $(cat $tmp/err)"
 
 echo "== 4. a module killed mid-episode"
 start=$(date +%s)

@@ -2,6 +2,7 @@
 // of every module's SENSORS, HINGE and HORMONE packets is in it; with --trace (logs of
 // ahhs-replay), SENSORS, HINGE and TRACE.
 //   log_check LOG --arena A --modules N --ticks T [--trace]
+//   log_check LOG --burst-channel CH --ticks T   (hinge commands with ticks 0..T-1, each once)
 #include <CLI/CLI.hpp>
 #include <ahhs/hinge_command_t.hpp>
 #include <ahhs/hormone_packet_t.hpp>
@@ -20,8 +21,10 @@ int main(int argc, char** argv) {
   int modules = 0;
   long ticks = 0;
   app.add_option("LOG", path)->required();
-  app.add_option("--arena", arena)->required();
-  app.add_option("--modules", modules)->required();
+  std::string burst_channel;
+  auto* burst_opt = app.add_option("--burst-channel", burst_channel);
+  app.add_option("--arena", arena)->excludes(burst_opt);
+  app.add_option("--modules", modules)->excludes(burst_opt);
   app.add_option("--ticks", ticks)->required();
   bool trace = false;
   app.add_flag("--trace", trace, "expect TRACE messages instead of hormone packets");
@@ -30,6 +33,26 @@ int main(int argc, char** argv) {
   lcm::LogFile log(path, "r");
   if (!log.good()) {
     std::fprintf(stderr, "log_check: cannot read %s\n", path.c_str());
+    return 1;
+  }
+  if (!burst_channel.empty()) {
+    std::set<long> seen;
+    long duplicates = 0, events = 0;
+    for (const lcm::LogEvent* e = log.readNextEvent(); e != nullptr; e = log.readNextEvent()) {
+      ++events;
+      ahhs::hinge_command_t h;
+      if (e->channel == burst_channel &&
+          ahhs::bus::Decode(e->data, static_cast<std::size_t>(e->datalen), &h))
+        duplicates += seen.insert(h.tick).second ? 0 : 1;
+    }
+    long missing = 0;
+    for (long t = 0; t < ticks; ++t) missing += seen.count(t) ? 0 : 1;
+    std::printf("log_check: %ld events; %ld of %ld burst ticks missing, %ld duplicates\n", events,
+                missing, ticks, duplicates);
+    return missing == 0 && duplicates == 0 ? 0 : 1;
+  }
+  if (arena.empty() || modules <= 0) {
+    std::fprintf(stderr, "log_check: --arena and --modules are needed (or --burst-channel)\n");
     return 1;
   }
   const ahhs::bus::ArenaChannels ch(arena);

@@ -2,6 +2,8 @@
 //   bus_peer --role responder --lcm-url URL
 //   bus_peer --role initiator --lcm-url URL [--pings N] [--burst N]
 //   bus_peer --role spam --lcm-url URL --channels A,B,... --seconds S   (garbage, for fault tests)
+//   bus_peer --role burst --lcm-url URL --burst N   (N hinge commands on TEST/BURST, ticks 0..N-1,
+//                                                    as fast as possible; for recorder tests)
 // The initiator waits for the responder's READY, does N typed ping-pongs (checking every
 // reply's content), then sends a burst of hinge commands as fast as it can and asks the
 // responder how many arrived. Exit 0 only when every reply was right and nothing was lost.
@@ -180,6 +182,13 @@ int Spammer(ahhs::bus::Bus& bus, const std::string& channels, double seconds) {
   return 0;
 }
 
+// Publishes `burst` hinge commands (ticks 0..burst-1) on TEST/BURST back to back.
+int Burster(ahhs::bus::Bus& bus, int burst) {
+  for (int k = 0; k < burst; ++k) ahhs::bus::PublishTyped(bus, kBurst, Command(k));
+  std::printf("burst: %d messages on %s\n", burst, kBurst);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -190,7 +199,7 @@ int main(int argc, char** argv) {
   int burst = 2000;
   app.add_option("--role", role, "responder or initiator")
       ->required()
-      ->check(CLI::IsMember({"responder", "initiator", "spam"}));
+      ->check(CLI::IsMember({"responder", "initiator", "spam", "burst"}));
   std::string channels;
   double seconds = 1;
   app.add_option("--channels", channels, "spam: comma-separated channels");
@@ -202,6 +211,7 @@ int main(int argc, char** argv) {
   try {
     ahhs::bus::LcmBus bus(url);
     if (role == "spam") return Spammer(bus, channels, seconds);
+    if (role == "burst") return Burster(bus, burst);
     return role == "responder" ? Responder(bus, burst) : Initiator(bus, pings, burst);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bus_peer: %s\n", e.what());

@@ -27,7 +27,8 @@ void OnSignal(int) { g_interrupted = true; }
 int main(int argc, char** argv) {
   CLI::App app{
       "ahhs-launch: one episode of a genome in an arena of separate processes (or --fused)"};
-  std::string scenario = "gait", joints = "damped", genome_file, url, arena, log_file;
+  std::string scenario = "gait", joints = "damped", genome_file, url, arena, log_file,
+              logger = "ahhs-logger";
   int modules = 5;
   double duration = 0;
   std::int64_t seed = 1;
@@ -45,7 +46,12 @@ int main(int argc, char** argv) {
   app.add_flag("--fused", fused, "run every node in this process over memq://");
   app.add_flag("--realtime", realtime,
                "the sim keeps wall-clock pace; modules act on the latest messages");
-  app.add_option("--log", log_file, "record the whole episode with lcm-logger into this file");
+  app.add_option("--log", log_file, "record the whole episode into this LCM log file");
+  app.add_option("--logger", logger,
+                 "recorder for --log: ahhs-logger (keeps every message) or lcm-logger (Debian's "
+                 "1.3.1 queues only 30 messages and can lose lockstep bursts)")
+      ->check(CLI::IsMember({"ahhs-logger", "lcm-logger"}))
+      ->capture_default_str();
   app.add_option("--lcm-url", url, "LCM URL for the processes (default: host-only multicast)");
   app.add_option("--arena", arena, "arena name (default: unique per launch)");
   app.add_option("--timeout", timeout_s, "give up after this many seconds")
@@ -100,6 +106,7 @@ int main(int argc, char** argv) {
       options.lockstep_timeout_ms = lockstep_timeout_ms;
       options.verbose = verbose;
       options.log_file = log_file;
+      options.logger = logger;
       al::ProcessArena arena_processes(options);
       result = arena_processes.Run(spec, [](std::string* why) {
         if (!g_interrupted) return true;

@@ -64,10 +64,18 @@ ProcessArena::ProcessArena(ProcessArenaOptions options) : options_(std::move(opt
   const bool quiet = !options_.verbose;
   try {
     if (!options_.log_file.empty()) {
-      children_.push_back({"lcm-logger", SpawnChild({"/usr/bin/lcm-logger", "--lcm-url=" + url,
-                                                     "--quiet", "--force", options_.log_file},
-                                                    quiet)});
-      for (int k = 0; k < 200; ++k) {  // wait until the logger has opened its file
+      std::vector<std::string> logger_args;
+      if (options_.logger == "ahhs-logger")
+        logger_args = {dir + "/ahhs-logger", "--lcm-url", url, "--force", options_.log_file};
+      else if (options_.logger == "lcm-logger")
+        logger_args = {"/usr/bin/lcm-logger", "--lcm-url=" + url, "--quiet", "--force",
+                       options_.log_file};
+      else
+        throw std::runtime_error("unknown logger '" + options_.logger +
+                                 "' (ahhs-logger or lcm-logger)");
+      children_.push_back({options_.logger, SpawnChild(logger_args, quiet)});
+      // Both loggers create the file once they are subscribed.
+      for (int k = 0; k < 200; ++k) {
         struct stat st;
         if (stat(options_.log_file.c_str(), &st) == 0) break;
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -82,7 +90,9 @@ ProcessArena::ProcessArena(ProcessArenaOptions options) : options_(std::move(opt
                                       "--lockstep-timeout-ms",
                                       std::to_string(options_.lockstep_timeout_ms)};
     if (options_.verbose) sim_args.push_back("--verbose");
-    // lcm-logger is a passive listener: pace the lockstep so it keeps up on a busy machine.
+    // A logger is a passive listener: pace the lockstep so that it keeps up on a busy machine
+    // (lcm-logger queues only 30 messages; ahhs-logger's queue is unbounded, but the socket's
+    // receive buffer is not).
     if (!options_.log_file.empty()) sim_args.insert(sim_args.end(), {"--min-tick-us", "3000"});
     children_.push_back({"ahhs-sim", SpawnChild(sim_args, quiet)});
     children_.push_back(

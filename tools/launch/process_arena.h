@@ -23,8 +23,11 @@ struct ProcessArenaOptions {
   int num_modules = 5;  // module processes (2 for the pendulum)
   int lockstep_timeout_ms = 2000;
   bool verbose = false;  // show the children's output
-  std::string log_file;  // when set, lcm-logger records everything into it
-  std::string bin_dir;   // where ahhs-sim and the others are (default: next to this program)
+  std::string log_file;  // when set, `logger` records everything into it
+  // "ahhs-logger" (ours, next to this program; keeps every message) or "lcm-logger" (Debian's
+  // /usr/bin/lcm-logger, whose 30-message queue can lose lockstep bursts).
+  std::string logger = "ahhs-logger";
+  std::string bin_dir;  // where ahhs-sim and the others are (default: next to this program)
 };
 
 // Starts `argv` (argv[0] a path) as a child that dies with this process and ignores Ctrl-C (its
@@ -48,7 +51,8 @@ class ProcessArena {
   // loop besides the children's health; returning false aborts with its message.
   EpisodeResult Run(EpisodeSpec spec, const std::function<bool(std::string*)>& keep_going);
 
-  // Stops lcm-logger gently so that it flushes its file (call after the last episode).
+  // Stops the logger gently so that it writes what it has and closes its file (call after the
+  // last episode).
   void FinishLog();
 
   const ProcessArenaOptions& options() const { return options_; }

@@ -25,10 +25,6 @@ class ArenaChannels {
   }
   // Written by ahhs-replay into its logs only (module_trace_t).
   std::string Trace(int module) const { return p_ + "MODULE" + std::to_string(module) + "/TRACE"; }
-  // Regular expressions matching the per-module channels of every module.
-  std::string AnyHinge() const { return p_ + "MODULE[0-9]+/HINGE"; }
-  std::string AnyHormone() const { return p_ + "MODULE[0-9]+/HORMONE"; }
-  std::string AnyStatus() const { return p_ + "MODULE[0-9]+/STATUS"; }
   std::string Topology() const { return p_ + "TOPOLOGY"; }
   std::string SimControl() const { return p_ + "SIM/CONTROL"; }
   std::string SimClock() const { return p_ + "SIM/CLOCK"; }

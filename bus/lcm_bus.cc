@@ -1,12 +1,70 @@
 #include "bus/lcm_bus.h"
 
+#include <dirent.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <exception>
 #include <lcm/lcm-cpp.hpp>
+#include <set>
+
+#include "bus/channel_filter.h"
 
 namespace ahhs::bus {
 
-LcmBus::LcmBus(const std::string& url) : url_(url), lcm_(std::make_unique<lcm::LCM>(url)) {
+namespace {
+
+std::set<int> OpenDescriptors() {
+  std::set<int> fds;
+  if (DIR* dir = opendir("/proc/self/fd")) {
+    while (const dirent* e = readdir(dir)) {
+      if (e->d_name[0] != '.') fds.insert(std::atoi(e->d_name));
+    }
+    closedir(dir);
+  }
+  return fds;
+}
+
+// The multicast port of a udpm:// URL (LCM's default 7667 when it names none).
+int UdpmPort(const std::string& url) {
+  const std::string target =
+      url.substr(7, url.find('?') == std::string::npos ? std::string::npos : url.find('?') - 7);
+  const auto colon = target.rfind(':');
+  return colon == std::string::npos ? 7667 : std::atoi(target.c_str() + colon + 1);
+}
+
+bool IsUdpSocketOnPort(int fd, int port) {
+  int type = 0;
+  socklen_t len = sizeof(type);
+  if (getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &len) != 0 || type != SOCK_DGRAM) return false;
+  sockaddr_in addr{};
+  len = sizeof(addr);
+  return getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0 &&
+         addr.sin_family == AF_INET && ntohs(addr.sin_port) == port;
+}
+
+// LCM offers no way to reach its udpm receive socket, so find the one UDP socket bound to the
+// URL's port that it opened since `before` (the receive socket is opened when the LCM instance
+// is created or, in some versions, on the first call that needs it, such as getFileno()).
+int FindLcmReceiveSocket(lcm::LCM& lcm, const std::string& url, const std::set<int>& before) {
+  if (lcm.getFileno() < 0) return -1;
+  const int port = UdpmPort(url);
+  int found = -1;
+  for (int fd : OpenDescriptors()) {
+    if (before.count(fd) || !IsUdpSocketOnPort(fd, port)) continue;
+    if (found >= 0) return -1;  // ambiguous (another thread opened one too): do not filter
+    found = fd;
+  }
+  return found;
+}
+
+}  // namespace
+
+LcmBus::LcmBus(const std::string& url) : url_(url) {
+  const std::set<int> fds_before = OpenDescriptors();
+  lcm_ = std::make_unique<lcm::LCM>(url);
   if (!lcm_->good()) {
     throw BusError("cannot open LCM bus '" + url +
                    "' (check the URL; udpm:// needs a multicast route, see docs/protocol.md)");
@@ -18,6 +76,35 @@ LcmBus::LcmBus(const std::string& url) : url_(url), lcm_(std::make_unique<lcm::L
     lcm::Subscription* all = lcm_->subscribeFunction(".*", &LcmBus::Ignore, this);
     if (all == nullptr) throw BusError("cannot subscribe to every channel of '" + url + "'");
     all->setQueueCapacity(1 << 30);
+  }
+  if (url.rfind("udpm://", 0) == 0) {
+    recv_fd_ = FindLcmReceiveSocket(*lcm_, url, fds_before);
+    UpdateChannelFilter();  // nothing subscribed yet: no LCM message is wanted
+  }
+}
+
+void LcmBus::UpdateChannelFilter() {
+  if (recv_fd_ < 0) return;
+  std::vector<std::string> prefixes;
+  for (const auto& [id, entry] : entries_) prefixes.push_back(ChannelPrefix(entry->channel_regex));
+  std::vector<sock_filter> program = BuildChannelFilter(prefixes, 8);  // after the UDP header
+  if (program.empty()) {
+    if (filter_attached_) {
+      int unused = 0;
+      setsockopt(recv_fd_, SOL_SOCKET, SO_DETACH_FILTER, &unused, sizeof(unused));
+    }
+    filter_attached_ = false;
+    return;
+  }
+  sock_fprog fprog{static_cast<unsigned short>(program.size()), program.data()};
+  // On failure the previous filter would stay, which could be too strict: then filter nothing.
+  if (setsockopt(recv_fd_, SOL_SOCKET, SO_ATTACH_FILTER, &fprog, sizeof(fprog)) == 0) {
+    filter_attached_ = true;
+  } else {
+    int unused = 0;
+    setsockopt(recv_fd_, SOL_SOCKET, SO_DETACH_FILTER, &unused, sizeof(unused));
+    filter_attached_ = false;
+    recv_fd_ = -1;
   }
 }
 
@@ -52,11 +139,13 @@ int LcmBus::Subscribe(const std::string& channel_regex, RawHandler handler, int 
   auto entry = std::make_unique<Entry>();
   entry->handler = std::move(handler);
   entry->bus = this;
+  entry->channel_regex = channel_regex;
   entry->subscription = lcm_->subscribeFunction(channel_regex, &LcmBus::OnMessage, entry.get());
   if (entry->subscription == nullptr) throw BusError("cannot subscribe to '" + channel_regex + "'");
   entry->subscription->setQueueCapacity(std::max(1, queue_capacity));
   const int id = next_id_++;
   entries_.emplace(id, std::move(entry));
+  UpdateChannelFilter();
   return id;
 }
 
@@ -65,6 +154,7 @@ void LcmBus::Unsubscribe(int subscription_id) {
   if (it == entries_.end()) return;
   lcm_->unsubscribe(it->second->subscription);
   entries_.erase(it);
+  UpdateChannelFilter();
 }
 
 int LcmBus::HandleQueued() {

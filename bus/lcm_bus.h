@@ -1,6 +1,9 @@
 // Bus over LCM, for any LCM URL: udpm://GROUP:PORT?ttl=0&recv_buf_size=N, memq://, file://...
 // Not thread-safe: one thread publishes and handles (with memq:// the bus counts what it
 // published so that Handle() never waits in select() for a message it knows is queued).
+// Over udpm:// the bus keeps a kernel socket filter on LCM's receive socket that passes only the
+// channels its subscriptions can match (bus/channel_filter.h), updated on every Subscribe and
+// Unsubscribe before they return; where the socket cannot be found, nothing is filtered.
 #pragma once
 
 #include <cstdint>
@@ -34,16 +37,20 @@ class LcmBus final : public Bus {
   const BusStats& stats() const override { return stats_; }
 
   const std::string& url() const { return url_; }
+  // Whether a channel filter is attached to the receive socket now (udpm:// only).
+  bool channel_filter_attached() const { return filter_attached_; }
 
  private:
   struct Entry {
     RawHandler handler;
     lcm::Subscription* subscription = nullptr;
+    std::string channel_regex;
     LcmBus* bus = nullptr;
   };
   static void OnMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel, Entry* entry);
   static void Ignore(const lcm::ReceiveBuffer* rbuf, const std::string& channel, LcmBus* bus);
-  int HandleQueued();  // memq:// only
+  int HandleQueued();          // memq:// only
+  void UpdateChannelFilter();  // udpm:// only
 
   std::string url_;
   std::unique_ptr<lcm::LCM> lcm_;
@@ -52,6 +59,8 @@ class LcmBus final : public Bus {
   bool memq_ = false;                // memq://: one thread publishes and handles
   std::int64_t memq_unhandled_ = 0;  // memq://: messages published and not yet handled
   bool delivered_ = false;           // the message being handled reached one of our handlers
+  int recv_fd_ = -1;                 // udpm://: LCM's receive socket, when found
+  bool filter_attached_ = false;
   BusStats stats_;
 };
 

@@ -31,10 +31,20 @@ SimNode::SimNode(bus::Bus* bus, SimNodeOptions options)
   bus::SubscribeTyped<sim_control_t>(
       *bus_, channels_.SimControl(),
       [this](const std::string&, const sim_control_t& m) { OnControl(m); }, &control_counters_);
-  bus::SubscribeTyped<hinge_command_t>(
-      *bus_, channels_.AnyHinge(),
-      [this](const std::string& channel, const hinge_command_t& m) { OnHinge(channel, m); },
-      &hinge_counters_);
+}
+
+void SimNode::SyncHingeSubscriptions(int n) {
+  while (static_cast<int>(hinge_subscriptions_.size()) > n) {
+    bus_->Unsubscribe(hinge_subscriptions_.back());
+    hinge_subscriptions_.pop_back();
+  }
+  while (static_cast<int>(hinge_subscriptions_.size()) < n) {
+    const int module = static_cast<int>(hinge_subscriptions_.size());
+    hinge_subscriptions_.push_back(bus::SubscribeTyped<hinge_command_t>(
+        *bus_, channels_.Hinge(module),
+        [this](const std::string& channel, const hinge_command_t& m) { OnHinge(channel, m); },
+        &hinge_counters_));
+  }
 }
 
 void SimNode::OnControl(const sim_control_t& m) {
@@ -103,6 +113,7 @@ void SimNode::Reset(const sim_control_t& m) {
   realtime_ = m.clock_mode == sim_control_t::MODE_REALTIME;
   steps_left_ = -1;
   const int n = scenario_->num_compartments();
+  SyncHingeSubscriptions(n);  // before TOPOLOGY and CLOCK go out: no module commands earlier
   commands_.assign(static_cast<std::size_t>(n),
                    std::vector<double>(static_cast<std::size_t>(scenario_->num_actuators()), 0.0));
   command_tick_.assign(static_cast<std::size_t>(n), -1);

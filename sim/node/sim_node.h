@@ -70,6 +70,9 @@ class SimNode {
   using Clock = std::chrono::steady_clock;
   void OnControl(const sim_control_t& msg);
   void OnHinge(const std::string& channel, const hinge_command_t& msg);
+  // Listens to the HINGE channel of modules 0..n-1 exactly (no regex), so that over udpm:// the
+  // bus's socket filter keeps the other modules' traffic out of this process.
+  void SyncHingeSubscriptions(int n);
   void Reset(const sim_control_t& msg);
   void Start();
   void Resume();
@@ -84,6 +87,7 @@ class SimNode {
   SimNodeOptions options_;
   bus::ArenaChannels channels_;
   bus::DecodeCounters control_counters_, hinge_counters_;
+  std::vector<int> hinge_subscriptions_;  // bus subscription id per module
   SimNodeStats stats_;
 
   Phase phase_ = Phase::kIdle;

@@ -51,15 +51,17 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
   std::int8_t run_state = -1;
   const std::int64_t ep = spec.episode;
   std::vector<int> subs;
-  subs.push_back(bus::SubscribeTyped<module_status_t>(
-      bus, ch.AnyStatus(), [&](const std::string&, const module_status_t& s) {
-        if (s.episode == ep &&
-            (s.state == module_status_t::READY || s.state == module_status_t::RUNNING))
-          ready.insert(s.module);
-        if (s.episode == ep && s.state == module_status_t::ERROR && result.error.empty())
-          result.error =
-              "module " + std::to_string(s.module) + " refused the episode: " + s.message;
-      }));
+  auto on_status = [&](const std::string&, const module_status_t& s) {
+    if (s.episode == ep &&
+        (s.state == module_status_t::READY || s.state == module_status_t::RUNNING))
+      ready.insert(s.module);
+    if (s.episode == ep && s.state == module_status_t::ERROR && result.error.empty())
+      result.error = "module " + std::to_string(s.module) + " refused the episode: " + s.message;
+  };
+  // One exact channel per module rather than a regex: over udpm:// the bus's socket filter then
+  // keeps the per-tick traffic of the modules out of the launcher.
+  for (int m = 0; m < modules; ++m)
+    subs.push_back(bus::SubscribeTyped<module_status_t>(bus, ch.Status(m), on_status));
   subs.push_back(bus::SubscribeTyped<sim_clock_t>(bus, ch.SimClock(),
                                                   [&](const std::string&, const sim_clock_t& c) {
                                                     if (c.episode != ep) return;

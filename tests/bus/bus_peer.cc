@@ -6,7 +6,8 @@
 //                                                    as fast as possible; for recorder tests)
 // The initiator waits for the responder's READY, does N typed ping-pongs (checking every
 // reply's content), then sends a burst of hinge commands as fast as it can and asks the
-// responder how many arrived. Exit 0 only when every reply was right and nothing was lost.
+// responder how many arrived. Exit 0 only when every reply was right and nothing was lost, and
+// (udpm://) the bus had its kernel channel filter attached.
 #include <CLI/CLI.hpp>
 #include <ahhs/hinge_command_t.hpp>
 #include <ahhs/hormone_packet_t.hpp>
@@ -212,7 +213,14 @@ int main(int argc, char** argv) {
     ahhs::bus::LcmBus bus(url);
     if (role == "spam") return Spammer(bus, channels, seconds);
     if (role == "burst") return Burster(bus, burst);
-    return role == "responder" ? Responder(bus, burst) : Initiator(bus, pings, burst);
+    const int rc = role == "responder" ? Responder(bus, burst) : Initiator(bus, pings, burst);
+    // Over udpm:// the kernel should filter our channels (bus/channel_filter.h); without it
+    // everything still works, only slower, so it is checked here explicitly.
+    if (url.rfind("udpm://", 0) == 0 && !bus.channel_filter_attached()) {
+      std::fprintf(stderr, "bus_peer: no channel filter on LCM's receive socket\n");
+      return 1;
+    }
+    return rc;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bus_peer: %s\n", e.what());
     return 1;

@@ -5,6 +5,7 @@
 #  3. --log records every tick of every module (ahhs-logger); replaying the log into a fresh
 #     ahhs-fitness gives the live fitness; --logger lcm-logger also records;
 #  4. a module killed mid-episode ends the episode with a clear error within seconds, no orphans;
+#     Ctrl-C to the launcher stops the episode and every child (exit status 130);
 #  5. 5 % of messages dropped: the episode completes and reports what was lost;
 #  6. garbage on every channel: counted, ignored, fitness unchanged;
 #  7. real time: a module started late joins the running episode.
@@ -66,6 +67,18 @@ grep -q "ahhs-module 2 ended during the episode (killed by signal 9)" $tmp/kill.
 sleep 0.5
 pgrep -f "arena KILL" && fail "orphan processes left"
 echo "ended with: $(grep "episode failed" $tmp/kill.err) after ${elapsed}s; no orphans"
+
+echo "== 4b. Ctrl-C (SIGINT) to the launcher mid-episode"
+"$bin/ahhs-launch" --scenario gait --genome $tmp/g2.json --duration 600 --arena INTR --lcm-url "$url" >/dev/null 2>$tmp/int.err & lp=$!
+for i in $(seq 50); do pgrep -f "ahhs-module --id 4 .*INTR" >/dev/null && break; sleep 0.1; done
+sleep 1
+kill -INT $lp
+wait $lp; rc=$?
+(( rc == 130 )) || fail "interrupted launcher exit status $rc: $(cat $tmp/int.err)"
+grep -q "episode failed: interrupted" $tmp/int.err || fail "interrupt message: $(cat $tmp/int.err)"
+sleep 0.5
+pgrep -f "arena INTR" && fail "orphan processes left after Ctrl-C"
+echo "interrupted: exit status $rc, no orphans"
 
 echo "== 5. 5 % of messages dropped (fault injection of the bus, in every process)"
 AHHS_FAULT_DROP=0.05 AHHS_FAULT_SEED=3 "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 30 \

@@ -162,7 +162,7 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   spec.genome = genome;
   spec.seed = static_cast<std::int64_t>(seed);
 
-  std::vector<double> physics, direct, fused, warm, fused_ratio, warm_ratio;
+  std::vector<double> physics, direct, fused, warm, fused_ratio, fused_physics_ratio, warm_ratio;
   double direct_fitness = 0, fused_fitness = 0, warm_fitness = std::nan("");
   double start_s = std::nan("");
   std::string failure;
@@ -179,12 +179,14 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
     failure = e.what();
   }
   for (int r = 0; r < repeats; ++r) {
-    physics.push_back(Timed(physics_only).first);
+    const double physics_s = Timed(physics_only).first;
+    physics.push_back(physics_s);
     const auto d = Timed([&] { return al::RunDirect(spec); });
     const auto f = Timed([&] { return al::RunFused(spec).fitness; });
     direct.push_back(d.first);
     fused.push_back(f.first);
     fused_ratio.push_back(f.first / d.first);
+    fused_physics_ratio.push_back(f.first / physics_s);
     direct_fitness = d.second;
     fused_fitness = f.second;
     if (processes && failure.empty()) {
@@ -227,8 +229,9 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   std::printf("  physics + controllers, no bus  %7.3f s   fitness %.17g\n", Median(direct),
               direct_fitness);
   std::printf(
-      "  fused arena (memq)             %7.3f s   fitness %.17g   %.2fx physics+controllers\n",
-      Median(fused), fused_fitness, Median(fused_ratio));
+      "  fused arena (memq)             %7.3f s   fitness %.17g   %.2fx physics+controllers, "
+      "%.2fx physics only\n",
+      Median(fused), fused_fitness, Median(fused_ratio), Median(fused_physics_ratio));
   std::printf("  multi-process arena (udpm)     %7.3f s   fitness %.17g   %.2fx fused\n",
               Median(warm), warm_fitness, Median(warm_ratio));
   std::printf("    (starting its 7 processes    %7.3f s, once per arena)\n", start_s);

@@ -73,9 +73,9 @@ LcmBus::LcmBus(const std::string& url) : url_(url) {
     // LCM's memq provider queues a message only when some subscription matches its channel;
     // with this catch-all every published message is queued, so we know how many are waiting.
     memq_ = true;
-    lcm::Subscription* all = lcm_->subscribeFunction(".*", &LcmBus::Ignore, this);
+    lcm_subscription_t* all = lcm_subscribe(lcm_->getUnderlyingLCM(), ".*", &LcmBus::Ignore, this);
     if (all == nullptr) throw BusError("cannot subscribe to every channel of '" + url + "'");
-    all->setQueueCapacity(1 << 30);
+    lcm_subscription_set_queue_capacity(all, 1 << 30);
   }
   if (url.rfind("udpm://", 0) == 0) {
     recv_fd_ = FindLcmReceiveSocket(*lcm_, url, fds_before);
@@ -109,7 +109,7 @@ void LcmBus::UpdateChannelFilter() {
 }
 
 LcmBus::~LcmBus() {
-  for (auto& [id, entry] : entries_) lcm_->unsubscribe(entry->subscription);
+  for (auto& [id, entry] : entries_) lcm_unsubscribe(lcm_->getUnderlyingLCM(), entry->subscription);
 }
 
 bool LcmBus::Publish(const std::string& channel, const void* data, std::size_t size) {
@@ -122,13 +122,15 @@ bool LcmBus::Publish(const std::string& channel, const void* data, std::size_t s
   return true;
 }
 
-void LcmBus::Ignore(const lcm::ReceiveBuffer*, const std::string&, LcmBus*) {}
+void LcmBus::Ignore(const lcm_recv_buf_t*, const char*, void*) {}
 
-void LcmBus::OnMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel, Entry* entry) {
-  // A handler must never take the process down: count and drop whatever it throws.
+void LcmBus::OnMessage(const lcm_recv_buf_t* rbuf, const char* channel, void* user) {
+  auto* entry = static_cast<Entry*>(user);
   entry->bus->delivered_ = true;
+  entry->channel.assign(channel);  // reuses the buffer's capacity
+  // A handler must never take the process down: count and drop whatever it throws.
   try {
-    entry->handler(channel, static_cast<const std::uint8_t*>(rbuf->data), rbuf->data_size);
+    entry->handler(entry->channel, static_cast<const std::uint8_t*>(rbuf->data), rbuf->data_size);
     ++entry->bus->stats_.dispatched;
   } catch (...) {
     ++entry->bus->stats_.handler_errors;
@@ -140,9 +142,10 @@ int LcmBus::Subscribe(const std::string& channel_regex, RawHandler handler, int 
   entry->handler = std::move(handler);
   entry->bus = this;
   entry->channel_regex = channel_regex;
-  entry->subscription = lcm_->subscribeFunction(channel_regex, &LcmBus::OnMessage, entry.get());
+  entry->subscription = lcm_subscribe(lcm_->getUnderlyingLCM(), channel_regex.c_str(),
+                                      &LcmBus::OnMessage, entry.get());
   if (entry->subscription == nullptr) throw BusError("cannot subscribe to '" + channel_regex + "'");
-  entry->subscription->setQueueCapacity(std::max(1, queue_capacity));
+  lcm_subscription_set_queue_capacity(entry->subscription, std::max(1, queue_capacity));
   const int id = next_id_++;
   entries_.emplace(id, std::move(entry));
   UpdateChannelFilter();
@@ -152,7 +155,7 @@ int LcmBus::Subscribe(const std::string& channel_regex, RawHandler handler, int 
 void LcmBus::Unsubscribe(int subscription_id) {
   auto it = entries_.find(subscription_id);
   if (it == entries_.end()) return;
-  lcm_->unsubscribe(it->second->subscription);
+  lcm_unsubscribe(lcm_->getUnderlyingLCM(), it->second->subscription);
   entries_.erase(it);
   UpdateChannelFilter();
 }

@@ -15,9 +15,9 @@
 
 namespace lcm {
 class LCM;
-class ReceiveBuffer;
-class Subscription;
 }  // namespace lcm
+struct _lcm_recv_buf_t;
+struct _lcm_subscription_t;
 
 namespace ahhs::bus {
 
@@ -41,14 +41,18 @@ class LcmBus final : public Bus {
   bool channel_filter_attached() const { return filter_attached_; }
 
  private:
+  // Subscriptions go through LCM's C API: its C++ wrapper builds a std::string of the channel
+  // name for every message (an allocation for names over 15 characters); here each
+  // subscription keeps one buffer for it.
   struct Entry {
     RawHandler handler;
-    lcm::Subscription* subscription = nullptr;
+    _lcm_subscription_t* subscription = nullptr;
     std::string channel_regex;
+    std::string channel;  // the channel of the message being handled
     LcmBus* bus = nullptr;
   };
-  static void OnMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel, Entry* entry);
-  static void Ignore(const lcm::ReceiveBuffer* rbuf, const std::string& channel, LcmBus* bus);
+  static void OnMessage(const _lcm_recv_buf_t* rbuf, const char* channel, void* entry);
+  static void Ignore(const _lcm_recv_buf_t* rbuf, const char* channel, void* bus);
   int HandleQueued();          // memq:// only
   void UpdateChannelFilter();  // udpm:// only
 

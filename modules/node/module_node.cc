@@ -10,7 +10,12 @@
 namespace ahhs::modules {
 
 ModuleNode::ModuleNode(bus::Bus* bus, ModuleNodeOptions options)
-    : bus_(bus), options_(std::move(options)), channels_(options_.arena) {
+    : bus_(bus),
+      options_(std::move(options)),
+      channels_(options_.arena),
+      hormone_channel_(channels_.Hormone(options_.id)),
+      hinge_channel_(channels_.Hinge(options_.id)),
+      status_channel_(channels_.Status(options_.id)) {
   bus::SubscribeTyped<genome_t>(
       *bus_, channels_.Genome(), [this](const std::string&, const genome_t& m) { OnGenome(m); },
       &counters_);
@@ -177,9 +182,9 @@ bool ModuleNode::TryStep(Clock::time_point now) {
     hormone_packet_.to_modules.assign(neighbours_.begin(), neighbours_.end());
     hormone_packet_.num_hormones = static_cast<std::int16_t>(controller_->num_hormones());
     hormone_packet_.amounts.assign(state_->outflow.begin(), state_->outflow.end());
-    bus::PublishTyped(*bus_, channels_.Hormone(options_.id), hormone_packet_);
+    bus::PublishTyped(*bus_, hormone_channel_, hormone_packet_);
   }
-  hinge_command_t h{};
+  hinge_command_t& h = hinge_command_;
   h.utime = utime;
   h.episode = episode_;
   h.tick = t;
@@ -188,7 +193,7 @@ bool ModuleNode::TryStep(Clock::time_point now) {
   h.values.assign(state_->actuators.data(), state_->actuators.data() + state_->actuators.size());
   h.present.assign(sensors_->actuator_present.begin(), sensors_->actuator_present.end());
   h.target_angle = M_PI / 2 * h.values[0];
-  bus::PublishTyped(*bus_, channels_.Hinge(options_.id), h);
+  bus::PublishTyped(*bus_, hinge_channel_, h);
 
   ++stats_.ticks;
   ++next_tick_;
@@ -265,7 +270,7 @@ void ModuleNode::PublishStatus(std::int8_t state) {
   s.late_messages = static_cast<std::int32_t>(st.late_messages);
   s.dropped_messages = static_cast<std::int32_t>(st.dropped_messages);
   s.message = st.last_error;
-  bus::PublishTyped(*bus_, channels_.Status(options_.id), s);
+  bus::PublishTyped(*bus_, status_channel_, s);
   next_heartbeat_ = Clock::now() + options_.heartbeat;
 }
 

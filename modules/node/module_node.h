@@ -7,6 +7,7 @@
 #pragma once
 
 #include <ahhs/genome_t.hpp>
+#include <ahhs/hinge_command_t.hpp>
 #include <ahhs/hormone_packet_t.hpp>
 #include <ahhs/module_sensors_t.hpp>
 #include <ahhs/sim_clock_t.hpp>
@@ -15,6 +16,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "bus/bus.h"
@@ -85,7 +87,10 @@ class ModuleNode {
   std::vector<int> neighbours_;               // sorted ids
   std::map<int, int> hormone_subscriptions_;  // neighbour id -> bus subscription id
   hormone_packet_t hormone_packet_;           // reused for publishing (no allocation per tick)
-  bool announce_ready_ = false;               // READY goes out from Process(), after subscribing
+  hinge_command_t hinge_command_;             // likewise
+  // This module's channels, built once (a name built per message costs an allocation).
+  std::string hormone_channel_, hinge_channel_, status_channel_;
+  bool announce_ready_ = false;  // READY goes out from Process(), after subscribing
   std::int64_t next_tick_ = 0;
   std::optional<module_sensors_t> sensors_;  // SENSORS(next_tick_) once it arrived
   Clock::time_point sensors_arrival_;

@@ -27,13 +27,22 @@ const char* PhaseName(SimNode::Phase phase) {
 }
 
 SimNode::SimNode(bus::Bus* bus, SimNodeOptions options)
-    : bus_(bus), options_(std::move(options)), channels_(options_.arena) {
+    : bus_(bus),
+      options_(std::move(options)),
+      channels_(options_.arena),
+      clock_channel_(channels_.SimClock()),
+      state_channel_(channels_.SimState()) {
   bus::SubscribeTyped<sim_control_t>(
       *bus_, channels_.SimControl(),
       [this](const std::string&, const sim_control_t& m) { OnControl(m); }, &control_counters_);
 }
 
 void SimNode::SyncHingeSubscriptions(int n) {
+  while (static_cast<int>(sensors_channels_.size()) < n) {
+    const int module = static_cast<int>(sensors_channels_.size());
+    sensors_channels_.push_back(channels_.Sensors(module));
+    hinge_channels_.push_back(channels_.Hinge(module));
+  }
   while (static_cast<int>(hinge_subscriptions_.size()) > n) {
     bus_->Unsubscribe(hinge_subscriptions_.back());
     hinge_subscriptions_.pop_back();
@@ -41,7 +50,7 @@ void SimNode::SyncHingeSubscriptions(int n) {
   while (static_cast<int>(hinge_subscriptions_.size()) < n) {
     const int module = static_cast<int>(hinge_subscriptions_.size());
     hinge_subscriptions_.push_back(bus::SubscribeTyped<hinge_command_t>(
-        *bus_, channels_.Hinge(module),
+        *bus_, hinge_channels_[static_cast<std::size_t>(module)],
         [this](const std::string& channel, const hinge_command_t& m) { OnHinge(channel, m); },
         &hinge_counters_));
   }
@@ -145,7 +154,11 @@ void SimNode::Resume() {
 }
 
 void SimNode::OnHinge(const std::string& channel, const hinge_command_t& m) {
-  if (!scenario_ || m.episode != episode_ || channel != channels_.Hinge(m.module)) {
+  // The channel must be the module's own: m.module indexes the channels subscribed for this
+  // episode's modules only (anything else is dropped before it is used as an index).
+  if (!scenario_ || m.episode != episode_ || m.module < 0 ||
+      m.module >= scenario_->num_compartments() ||
+      channel != hinge_channels_[static_cast<std::size_t>(m.module)]) {
     ++stats_.dropped_messages;  // foreign episode, or a module speaking for another
     return;
   }
@@ -240,7 +253,7 @@ void SimNode::PublishTickStart() {
   for (int c = 0; c < scenario_->num_compartments(); ++c) {
     FillSensorsMessage(*scenario_, c, episode_, &sensors_msg_);
     sensors_msg_.utime = bus::NowUtime();
-    bus::PublishTyped(*bus_, channels_.Sensors(c), sensors_msg_);
+    bus::PublishTyped(*bus_, sensors_channels_[static_cast<std::size_t>(c)], sensors_msg_);
   }
   PublishClock(phase_ == Phase::kPaused ? sim_clock_t::PAUSED : sim_clock_t::RUNNING);
   if (realtime_ && scenario_->tick() % 20 == 0) {  // lets a late module learn the docking
@@ -259,14 +272,14 @@ void SimNode::PublishClock(std::int8_t run_state) {
   c.control_period = scenario_ ? scenario_->control_period() : 0;
   c.clock_mode = realtime_ ? sim_clock_t::MODE_REALTIME : sim_clock_t::MODE_LOCKSTEP;
   c.run_state = run_state;
-  bus::PublishTyped(*bus_, channels_.SimClock(), c);
+  bus::PublishTyped(*bus_, clock_channel_, c);
 }
 
 void SimNode::PublishState(double sim_time) {
   scenario_->Bodies(&bodies_);
   FillStateMessage(bodies_, episode_, scenario_->tick(), sim_time, &state_msg_);
   state_msg_.utime = bus::NowUtime();
-  bus::PublishTyped(*bus_, channels_.SimState(), state_msg_);
+  bus::PublishTyped(*bus_, state_channel_, state_msg_);
 }
 
 void SimNode::Finish(StepStatus status) {

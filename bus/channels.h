@@ -29,6 +29,7 @@ class ArenaChannels {
   std::string SimControl() const { return p_ + "SIM/CONTROL"; }
   std::string SimClock() const { return p_ + "SIM/CLOCK"; }
   std::string SimState() const { return p_ + "SIM/STATE"; }
+  std::string SimScene() const { return p_ + "SIM/SCENE"; }
   std::string Genome() const { return p_ + "GENOME"; }
   std::string Fitness() const { return p_ + "FITNESS"; }
 

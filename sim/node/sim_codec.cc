@@ -1,5 +1,6 @@
 #include "sim/node/sim_codec.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ahhs::sim {
@@ -56,6 +57,18 @@ void FillStateMessage(const std::vector<BodyState>& bodies, std::int64_t episode
     m->sz.push_back(b.size[2]);
     m->mass.push_back(b.mass);
   }
+}
+
+void KeepMovingBodies(std::vector<BodyState>* bodies) {
+  bodies->erase(std::remove_if(bodies->begin(), bodies->end(),
+                               [](const BodyState& b) { return !(b.mass > 0); }),
+                bodies->end());
+}
+
+void KeepStaticBodies(std::vector<BodyState>* bodies) {
+  bodies->erase(std::remove_if(bodies->begin(), bodies->end(),
+                               [](const BodyState& b) { return b.mass > 0; }),
+                bodies->end());
 }
 
 sim_state_t StateMessage(const std::vector<BodyState>& bodies, std::int64_t episode,

@@ -31,7 +31,8 @@ SimNode::SimNode(bus::Bus* bus, SimNodeOptions options)
       options_(std::move(options)),
       channels_(options_.arena),
       clock_channel_(channels_.SimClock()),
-      state_channel_(channels_.SimState()) {
+      state_channel_(channels_.SimState()),
+      scene_channel_(channels_.SimScene()) {
   bus::SubscribeTyped<sim_control_t>(
       *bus_, channels_.SimControl(),
       [this](const std::string&, const sim_control_t& m) { OnControl(m); }, &control_counters_);
@@ -135,6 +136,7 @@ void SimNode::Reset(const sim_control_t& m) {
     t.utime = bus::NowUtime();
     return t;
   }());
+  PublishScene();
   PublishClock(sim_clock_t::RESET);
   PublishState(0.0);
 }
@@ -256,6 +258,7 @@ void SimNode::PublishTickStart() {
     bus::PublishTyped(*bus_, sensors_channels_[static_cast<std::size_t>(c)], sensors_msg_);
   }
   PublishClock(phase_ == Phase::kPaused ? sim_clock_t::PAUSED : sim_clock_t::RUNNING);
+  if (scenario_->tick() > 0 && scenario_->tick() % 20 == 0) PublishScene();  // for late joiners
   if (realtime_ && scenario_->tick() % 20 == 0) {  // lets a late module learn the docking
     auto t = TopologyMessage(*scenario_, episode_);
     t.utime = bus::NowUtime();
@@ -277,9 +280,19 @@ void SimNode::PublishClock(std::int8_t run_state) {
 
 void SimNode::PublishState(double sim_time) {
   scenario_->Bodies(&bodies_);
+  KeepMovingBodies(&bodies_);
   FillStateMessage(bodies_, episode_, scenario_->tick(), sim_time, &state_msg_);
   state_msg_.utime = bus::NowUtime();
   bus::PublishTyped(*bus_, state_channel_, state_msg_);
+}
+
+void SimNode::PublishScene() {
+  std::vector<BodyState> bodies;
+  scenario_->Bodies(&bodies);
+  KeepStaticBodies(&bodies);
+  auto m = StateMessage(bodies, episode_, scenario_->tick(), scenario_->sim_time());
+  m.utime = bus::NowUtime();
+  bus::PublishTyped(*bus_, scene_channel_, m);
 }
 
 void SimNode::Finish(StepStatus status) {

@@ -81,6 +81,7 @@ class SimNode {
   void PublishTickStart();
   void PublishClock(std::int8_t run_state);
   void PublishState(double sim_time);
+  void PublishScene();
   void Finish(StepStatus status);
 
   bus::Bus* bus_;
@@ -90,7 +91,7 @@ class SimNode {
   std::vector<int> hinge_subscriptions_;  // bus subscription id per module
   // Channel names used every tick, built once (a name built per message costs an allocation).
   std::vector<std::string> sensors_channels_, hinge_channels_;
-  std::string clock_channel_, state_channel_;
+  std::string clock_channel_, state_channel_, scene_channel_;
   SimNodeStats stats_;
 
   Phase phase_ = Phase::kIdle;

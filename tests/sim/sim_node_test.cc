@@ -70,13 +70,26 @@ TEST_CASE("lockstep over the bus equals the same policy run in-process, bit for 
   bus::LcmBus bus("memq://");
   sim::SimNode node(&bus, {});
   FakeModules modules(bus, 7);
-  int states = 0, clocks = 0, topologies = 0;
+  int states = 0, clocks = 0, topologies = 0, scenes = 0;
   double last_state_time = -1;
+  // SIM/STATE: the cart and the bob (they move); SIM/SCENE: the two walls (static, mass 0).
   bus::SubscribeTyped<sim_state_t>(bus, "AHHS/SIM/STATE",
                                    [&](const std::string&, const sim_state_t& m) {
                                      ++states;
                                      CHECK(m.sim_time >= last_state_time);
                                      last_state_time = m.sim_time;
+                                     REQUIRE(m.num_bodies == 2);
+                                     CHECK(m.module[0] == 0);
+                                     CHECK(m.mass[0] > 0);
+                                     CHECK(m.mass[1] > 0);
+                                   });
+  bus::SubscribeTyped<sim_state_t>(bus, "AHHS/SIM/SCENE",
+                                   [&](const std::string&, const sim_state_t& m) {
+                                     ++scenes;
+                                     REQUIRE(m.num_bodies == 2);
+                                     CHECK(m.mass[0] == 0);
+                                     CHECK(m.px[0] == -m.px[1]);  // the walls, symmetric
+                                     CHECK(m.px[1] > 1.0);
                                    });
   bus::SubscribeTyped<sim_clock_t>(bus, "AHHS/SIM/CLOCK",
                                    [&](const std::string&, const sim_clock_t&) { ++clocks; });
@@ -121,6 +134,7 @@ TEST_CASE("lockstep over the bus equals the same policy run in-process, bit for 
   CHECK(states >= 30 * 20);  // at least 30 Hz of simulated time
   CHECK(clocks >= 400);
   CHECK(topologies == 1);
+  CHECK(scenes == 1 + 400 / 20 - 1);  // at reset, then every 20 ticks (20, 40, ..., 380)
 }
 
 TEST_CASE("bad commands are counted and dropped; a silent module times out", "[sim][node]") {

@@ -271,6 +271,13 @@ int main(int argc, char** argv) {
       }
       if (log) {
         sc.Bodies(&bodies);
+        if (t.tick % 20 == 0) {  // the static bodies, once per simulated second, as the sim does
+          auto scene = bodies;
+          ahhs::sim::KeepStaticBodies(&scene);
+          log->Write(ch.SimScene(), utime,
+                     ahhs::sim::StateMessage(scene, spec.episode, t.tick + 1, time));
+        }
+        ahhs::sim::KeepMovingBodies(&bodies);
         log->Write(ch.SimState(), utime,
                    ahhs::sim::StateMessage(bodies, spec.episode, t.tick + 1, time));
       }

@@ -66,9 +66,9 @@ void KeepMovingBodies(std::vector<BodyState>* bodies) {
 }
 
 void KeepStaticBodies(std::vector<BodyState>* bodies) {
-  bodies->erase(std::remove_if(bodies->begin(), bodies->end(),
-                               [](const BodyState& b) { return b.mass > 0; }),
-                bodies->end());
+  bodies->erase(
+      std::remove_if(bodies->begin(), bodies->end(), [](const BodyState& b) { return b.mass > 0; }),
+      bodies->end());
 }
 
 sim_state_t StateMessage(const std::vector<BodyState>& bodies, std::int64_t episode,

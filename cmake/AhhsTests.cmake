@@ -15,6 +15,9 @@ function(ahhs_add_catch_test)
   target_link_libraries(${ARG_NAME} PRIVATE ahhs_catch_main ${ARG_LIBS} ahhs_warnings)
   catch_discover_tests(${ARG_NAME}
     TEST_PREFIX "${ARG_NAME}:"
+    # A name CTest cannot pass through whole (a semicolon splits it) would match no test case
+    # and pass without running anything: make that a failure.
+    EXTRA_ARGS --warn NoTests
     WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}
     PROPERTIES LABELS "${ARG_LABELS}" SKIP_RETURN_CODE ${AHHS_SKIP_RETURN_CODE}
                ENVIRONMENT "AHHS_SOURCE_DIR=${PROJECT_SOURCE_DIR};AHHS_BINARY_DIR=${PROJECT_BINARY_DIR}")

@@ -65,7 +65,7 @@ TEST_CASE("proportional selection follows f - f_min + epsilon") {
   CHECK(static_cast<double>(counts[2]) / n == Approx(0.75).margin(0.005));
 }
 
-TEST_CASE("equal fitness gives uniform selection; bad input is refused") {
+TEST_CASE("equal fitness gives uniform selection, bad input is refused") {
   modules::Rng rng(3);
   std::map<int, int> counts;
   for (int i = 0; i < 40000; ++i)
@@ -87,7 +87,7 @@ TEST_CASE("rank and summary statistics") {
   CHECK(evolver::Summarise({3.0, 1.0, 2.0}).median == 2.0);
 }
 
-TEST_CASE("elitism copies the best unchanged into slot 0; the rest are fresh offspring") {
+TEST_CASE("elitism copies the best unchanged into slot 0, the rest are fresh offspring") {
   GaParams p;
   p.population = 10;
   auto parents = evolver::InitialPopulation(SmallShape(), p, 5);

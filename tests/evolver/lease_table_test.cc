@@ -44,7 +44,7 @@ TEST_CASE("jobs go to live workers up to slots + prefetch, lowest job first") {
   CHECK(u.Schedule(t0).empty());
 }
 
-TEST_CASE("a result frees the slot; duplicates and unknown jobs are ignored") {
+TEST_CASE("a result frees the slot, duplicates and unknown jobs are ignored") {
   LeaseTable t(Options());
   t.AddJob(0);
   t.AddJob(1);
@@ -61,7 +61,7 @@ TEST_CASE("a result frees the slot; duplicates and unknown jobs are ignored") {
   CHECK(t.done() == 1);
 }
 
-TEST_CASE("an expired lease is re-issued with the next attempt; the first valid result wins") {
+TEST_CASE("an expired lease is re-issued with the next attempt, the first valid result wins") {
   LeaseTable t(Options());
   t.AddJob(0);
   t.OnWorkerStatus("a", 1, {}, 0, t0);
@@ -113,7 +113,7 @@ TEST_CASE("a job missing from the worker's status after the grace time was lost"
   CHECK(t.Schedule(t0 + milliseconds(300)).at(0).attempt == 1);
 }
 
-TEST_CASE("an invalid result sends the job elsewhere; too many fail it") {
+TEST_CASE("an invalid result sends the job elsewhere, too many fail it") {
   LeaseTable t(Options());
   t.AddJob(0);
   t.OnWorkerStatus("bad", 1, {}, 0, t0);

@@ -183,7 +183,7 @@ TEST_CASE("crossover keeps the shape and takes each gene from one parent", "[var
                   std::invalid_argument);
 }
 
-TEST_CASE("same seed, same bits; another seed, another genome", "[variation][determinism]") {
+TEST_CASE("same seed, same bits, another seed, another genome", "[variation][determinism]") {
   for (const Shape& shape : kShapes) {
     Rng r1(42), r2(42), r3(43);
     Genome a = RandomGenome(shape, r1);

@@ -216,7 +216,7 @@ TEST_CASE("gait: reset(seed) and the same commands give bit-identical runs",
   CHECK(run(b, 3) == first);  // a fresh world, the same bits
 }
 
-TEST_CASE("gait: non-finite commands are ignored; a blow-up fails the episode", "[sim][gait]") {
+TEST_CASE("gait: non-finite commands are ignored, a blow-up fails the episode", "[sim][gait]") {
   GaitScenario g(Gait(Joints::kFixed, 2, 5));
   g.Reset(1);
   const double nan[1] = {std::nan("")};

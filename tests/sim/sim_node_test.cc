@@ -137,7 +137,7 @@ TEST_CASE("lockstep over the bus equals the same policy run in-process, bit for 
   CHECK(scenes == 1 + 400 / 20 - 1);  // at reset, then every 20 ticks (20, 40, ..., 380)
 }
 
-TEST_CASE("bad commands are counted and dropped; a silent module times out", "[sim][node]") {
+TEST_CASE("bad commands are counted and dropped, a silent module times out", "[sim][node]") {
   bus::LcmBus bus("memq://");
   sim::SimNodeOptions options;
   options.lockstep_timeout = 5ms;

@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "bus/lcm_bus.h"
+#include "bus/make_bus.h"
 
 namespace ahhs::bus {
 
@@ -25,7 +25,7 @@ int FaultBus::Subscribe(const std::string& channel_regex, RawHandler handler, in
 }
 
 std::unique_ptr<Bus> MakeBus(const std::string& url) {
-  auto bus = std::make_unique<LcmBus>(url);
+  auto bus = OpenBus(url);
   const char* drop = std::getenv("AHHS_FAULT_DROP");
   if (drop == nullptr || *drop == '\0') return bus;
   char* end = nullptr;

@@ -1,6 +1,6 @@
 // How a worker evaluates one job (ahhs-worker --arena):
 //   direct     scenario and controllers stepped in one loop, no bus (the fastest; default)
-//   fused      the arena's node classes in this process over memq:// (RunFused)
+//   fused      the arena's node classes in this process on an in-process bus (RunFused)
 //   processes  ahhs-sim, ahhs-fitness and ahhs-module processes over LCM, kept between jobs
 // All three give bit-identical fitness (tests/arena, tests/evolver). An episode whose physics
 // fails scores kFailedEpisodeFitness, with the reason in the outcome's message.

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # ahhs-launch end to end, inside a private network namespace:
-#  1. fused and process arenas give bit-identical fitness (pendulum, gait; AHHS1, AHHS2; seeds);
+#  1. fused (inproc:// and LCM's memq://) and process arenas give bit-identical fitness
+#     (pendulum, gait; AHHS1, AHHS2; seeds); --fused refuses a URL that leaves the process;
 #  2. a genome of the wrong shape is refused;
 #  3. --log records every tick of every module (ahhs-logger); replaying the log into a fresh
 #     ahhs-fitness gives the live fitness; --logger lcm-logger also records;
@@ -28,10 +29,16 @@ echo "== 1. fused == processes"
 for c in "pendulum p2 1 30" "pendulum p1 2 30" "gait g2 3 10" "gait g1 4 10" "gait g2 5 10 --joints fixed"; do
   set -- $c
   "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --fused >$tmp/f.out || fail "fused $c"
+  "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --fused --lcm-url memq:// >$tmp/m.out || fail "fused on memq $c"
   "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --lcm-url "$url" >$tmp/p.out 2>$tmp/p.err || { cat $tmp/p.err; fail "processes $c"; }
-  echo "$c: fused $(fit $tmp/f.out) processes $(fit $tmp/p.out)"
+  echo "$c: fused $(fit $tmp/f.out) fused on memq $(fit $tmp/m.out) processes $(fit $tmp/p.out)"
   [[ -n "$(fit $tmp/f.out)" && "$(fit $tmp/f.out)" == "$(fit $tmp/p.out)" ]] || fail "fused and process fitness differ ($c)"
+  [[ "$(fit $tmp/f.out)" == "$(fit $tmp/m.out)" ]] || fail "inproc:// and memq:// differ ($c)"
 done
+if "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --fused --lcm-url "$url" 2>$tmp/err; then fail "--fused on udpm accepted"; fi
+grep -q "must be inproc:// or memq://" $tmp/err || fail "--fused URL message: $(cat $tmp/err)"
+if "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --lcm-url inproc:// 2>$tmp/err; then fail "process arena on inproc:// accepted"; fi
+grep -q "use it with --fused" $tmp/err || fail "inproc URL message: $(cat $tmp/err)"
 
 echo "== 2. wrong genome shape"
 if "$bin/ahhs-launch" --scenario gait --genome $tmp/p2.json --fused 2>$tmp/err; then fail "shape accepted"; fi

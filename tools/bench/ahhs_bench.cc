@@ -133,9 +133,9 @@ std::pair<double, double> Timed(F&& f) {
   return {std::chrono::duration<double>(Clock::now() - t0).count(), fitness};
 }
 
-// One gait episode four ways. The multi-process arena is timed as evolution uses it (processes
+// One gait episode six ways. The multi-process arena is timed as evolution uses it (processes
 // already running, as in `ahhs-worker --arena processes`); starting them and a whole
-// `ahhs-launch` run are printed apart. The four are timed in rounds, one after the other, and
+// `ahhs-launch` run are printed apart. All are timed in rounds, one after the other, and
 // the ratios are taken within a round: this machine's speed drifts by tens of per cent over
 // seconds, which would otherwise show up as a ratio.
 void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
@@ -161,9 +161,35 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   spec.config = config;
   spec.genome = genome;
   spec.seed = static_cast<std::int64_t>(seed);
+  // The same episode's physics without controllers: the hinge commands the controllers gave,
+  // recorded once from the loop without a bus, are replayed tick by tick.
+  std::vector<std::vector<double>> commands;  // [tick][compartment * actuators + a]
+  al::RunDirectEpisode(spec, [&](const al::DirectTick& t) {
+    std::vector<double> row;
+    for (int c = 0; c < t.scenario->num_compartments(); ++c) {
+      const auto& a = t.organism->state(c).actuators;
+      row.insert(row.end(), a.begin(), a.end());
+    }
+    commands.push_back(std::move(row));
+  });
+  auto physics_replay = [&] {
+    auto sim = as::MakeScenario(config);
+    sim->Reset(seed);
+    const int na = sim->num_actuators();
+    for (const auto& row : commands) {
+      for (int c = 0; c < sim->num_compartments(); ++c)
+        sim->SetActuators(c, row.data() + static_cast<std::ptrdiff_t>(c * na));
+      if (sim->Step() != as::StepStatus::kRunning) break;
+    }
+    return sim->Fitness();
+  };
 
-  std::vector<double> physics, direct, fused, warm, fused_ratio, fused_physics_ratio, warm_ratio;
-  double direct_fitness = 0, fused_fitness = 0, warm_fitness = std::nan("");
+  std::vector<double> physics, replay, direct, fused, memq, warm, fused_ratio, fused_replay_ratio,
+      memq_ratio, memq_replay_ratio, warm_ratio;
+  double replay_fitness = 0, direct_fitness = 0, fused_fitness = 0, memq_fitness = 0,
+         warm_fitness = std::nan("");
+  al::EpisodeSpec memq_spec = spec;
+  memq_spec.fused_url = "memq://";
   double start_s = std::nan("");
   std::string failure;
   std::unique_ptr<al::ProcessArena> processes;
@@ -179,16 +205,23 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
     failure = e.what();
   }
   for (int r = 0; r < repeats; ++r) {
-    const double physics_s = Timed(physics_only).first;
-    physics.push_back(physics_s);
+    physics.push_back(Timed(physics_only).first);
+    const auto p = Timed(physics_replay);
+    replay.push_back(p.first);
+    replay_fitness = p.second;
     const auto d = Timed([&] { return al::RunDirect(spec); });
     const auto f = Timed([&] { return al::RunFused(spec).fitness; });
+    const auto q = Timed([&] { return al::RunFused(memq_spec).fitness; });
     direct.push_back(d.first);
     fused.push_back(f.first);
     fused_ratio.push_back(f.first / d.first);
-    fused_physics_ratio.push_back(f.first / physics_s);
+    fused_replay_ratio.push_back(f.first / p.first);
+    memq.push_back(q.first);
+    memq_ratio.push_back(q.first / d.first);
+    memq_replay_ratio.push_back(q.first / p.first);
     direct_fitness = d.second;
     fused_fitness = f.second;
+    memq_fitness = q.second;
     if (processes && failure.empty()) {
       const auto w = Timed([&] {
         al::EpisodeSpec next = spec;
@@ -225,13 +258,19 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
       "gait, 5 modules, damped, 60 s at 20 Hz, AHHS2 5 hormones x 30 rules, seed %llu, median "
       "of %d rounds\n",
       static_cast<unsigned long long>(seed), repeats);
-  std::printf("  physics only (wave drive)      %7.3f s\n", Median(physics));
+  std::printf("  physics only (wave drive)      %7.3f s   (another trajectory)\n", Median(physics));
+  std::printf("  physics only (same episode)    %7.3f s   fitness %.17g   (recorded commands)\n",
+              Median(replay), replay_fitness);
   std::printf("  physics + controllers, no bus  %7.3f s   fitness %.17g\n", Median(direct),
               direct_fitness);
   std::printf(
-      "  fused arena (memq)             %7.3f s   fitness %.17g   %.2fx physics+controllers, "
+      "  fused arena (inproc://)        %7.3f s   fitness %.17g   %.2fx physics+controllers, "
       "%.2fx physics only\n",
-      Median(fused), fused_fitness, Median(fused_ratio), Median(fused_physics_ratio));
+      Median(fused), fused_fitness, Median(fused_ratio), Median(fused_replay_ratio));
+  std::printf(
+      "  fused arena on LCM's memq://   %7.3f s   fitness %.17g   %.2fx physics+controllers, "
+      "%.2fx physics only\n",
+      Median(memq), memq_fitness, Median(memq_ratio), Median(memq_replay_ratio));
   std::printf("  multi-process arena (udpm)     %7.3f s   fitness %.17g   %.2fx fused\n",
               Median(warm), warm_fitness, Median(warm_ratio));
   std::printf("    (starting its 7 processes    %7.3f s, once per arena)\n", start_s);

@@ -1,5 +1,5 @@
 // ahhs-launch: runs one episode of a genome in an arena made of separate processes (ahhs-sim,
-// one ahhs-module per compartment, ahhs-fitness), or with --fused in this process over memq://.
+// one ahhs-module per compartment, ahhs-fitness), or with --fused in this process (inproc://).
 // Prints "fitness: <value>" as its last line. Every child is stopped on success, on error and on
 // Ctrl-C; children also die with the launcher (PR_SET_PDEATHSIG).
 #include <unistd.h>
@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "bus/lcm_bus.h"
+#include "bus/make_bus.h"
 #include "modules/core/genome_json.h"
 #include "tools/launch/episode_runner.h"
 #include "tools/launch/process_arena.h"
@@ -43,7 +44,8 @@ int main(int argc, char** argv) {
   app.add_option("--joints", joints, "gait docking: damped or fixed")->capture_default_str();
   app.add_option("--modules", modules, "gait: modules in the chain (>= 2)")->capture_default_str();
   app.add_option("--duration", duration, "episode length, simulated seconds (default: the task's)");
-  app.add_flag("--fused", fused, "run every node in this process over memq://");
+  app.add_flag("--fused", fused,
+               "run every node in this process (on inproc://, or memq:// with --lcm-url memq://)");
   app.add_flag("--realtime", realtime,
                "the sim keeps wall-clock pace; modules act on the latest messages");
   app.add_option("--log", log_file, "record the whole episode into this LCM log file");
@@ -52,7 +54,9 @@ int main(int argc, char** argv) {
                  "1.3.1 queues only 30 messages and can lose lockstep bursts)")
       ->check(CLI::IsMember({"ahhs-logger", "lcm-logger"}))
       ->capture_default_str();
-  app.add_option("--lcm-url", url, "LCM URL for the processes (default: host-only multicast)");
+  app.add_option("--lcm-url", url,
+                 "bus URL: for the processes (default: host-only multicast); with --fused, "
+                 "inproc:// (default) or memq://");
   app.add_option("--arena", arena, "arena name (default: unique per launch)");
   app.add_option("--timeout", timeout_s, "give up after this many seconds")
       ->check(CLI::PositiveNumber)
@@ -81,12 +85,20 @@ int main(int argc, char** argv) {
     if (fused && !log_file.empty())
       throw std::invalid_argument(
           "--log records bus traffic; it needs the process arena, not --fused");
+    if (fused && !url.empty() && !ahhs::bus::IsInProcessUrl(url))
+      throw std::invalid_argument(
+          "--fused runs in this process: --lcm-url must be inproc:// or "
+          "memq://, not '" +
+          url + "'");
+    if (!fused && ahhs::bus::IsInProcessUrl(url))
+      throw std::invalid_argument("'" + url + "' stays inside one process: use it with --fused");
   } catch (const std::exception& e) {
     std::cerr << "ahhs-launch: " << e.what() << '\n';
     return 1;
   }
   spec.seed = seed;
   spec.realtime = realtime;
+  if (fused && !url.empty()) spec.fused_url = url;
   spec.episode = static_cast<std::int64_t>(getpid()) * 1000 + 1;
   spec.arena = arena.empty() ? "AHHS" + std::to_string(getpid()) : arena;
   spec.episode_timeout = std::chrono::seconds(timeout_s);

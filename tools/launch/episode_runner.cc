@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "bus/channels.h"
-#include "bus/lcm_bus.h"
+#include "bus/make_bus.h"
 #include "bus/typed.h"
 #include "evolver/fitness/fitness_node.h"
 #include "modules/core/organism.h"
@@ -157,7 +157,19 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
 }
 
 EpisodeResult RunFused(const EpisodeSpec& spec) {
-  bus::LcmBus bus("memq://");
+  EpisodeResult refused;
+  if (!bus::IsInProcessUrl(spec.fused_url)) {
+    refused.error = "the fused arena runs on inproc:// or memq://, not on '" + spec.fused_url + "'";
+    return refused;
+  }
+  std::unique_ptr<bus::Bus> bus_owner;
+  try {
+    bus_owner = bus::OpenBus(spec.fused_url);
+  } catch (const bus::BusError& e) {
+    refused.error = e.what();
+    return refused;
+  }
+  bus::Bus& bus = *bus_owner;
   sim::SimNodeOptions sim_options;
   sim_options.arena = spec.arena;
   sim::SimNode sim_node(&bus, sim_options);
@@ -171,7 +183,7 @@ EpisodeResult RunFused(const EpisodeSpec& spec) {
     o.arena = spec.arena;
     nodes.push_back(std::make_unique<modules::ModuleNode>(&bus, o));
   }
-  // One memq bus: one Handle() dispatches to every node, then each node acts on what it got.
+  // One shared bus: one Handle() dispatches to every node, then each node acts on what it got.
   // Two rounds per call follow the lockstep (commands -> sim publishes SENSORS -> modules step
   // and publish HINGE and HORMONE); a Handle per node would cost a syscall each.
   auto pump = [&](std::chrono::microseconds wait) {

@@ -1,6 +1,6 @@
 // The launcher's protocol role: one episode with a given genome on a bus where a sim, one module
 // per compartment and a fitness monitor listen (docs/protocol.md, "Episode"). Used by ahhs-launch
-// for separate processes and for the fused arena, where all nodes run here over memq://.
+// for separate processes and for the fused arena, where all nodes run in this process.
 #pragma once
 
 #include <chrono>
@@ -28,6 +28,9 @@ struct EpisodeSpec {
   // physical module may come later and join the running episode).
   std::chrono::milliseconds realtime_join_wait{1500};
   std::chrono::seconds episode_timeout{3600};
+  // The fused arena's bus: inproc:// (bus/in_process_bus.h, the default: no system call per
+  // message) or memq:// (LCM's in-process provider). Results are the same to the bit.
+  std::string fused_url = "inproc://";
 };
 
 struct EpisodeResult {
@@ -52,7 +55,7 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
                          const std::function<bool(std::string*)>& alive);
 
 // The fused arena: sim node, one module node per compartment and the fitness node in this
-// process over a fresh memq:// bus.
+// process on a fresh bus of `spec.fused_url`. A URL that leaves the process is an error result.
 EpisodeResult RunFused(const EpisodeSpec& spec);
 
 // What RunDirectEpisode shows an observer after every tick (ahhs-replay's trace): the sensors

@@ -53,7 +53,21 @@ void ModuleNode::NewEpisode(std::int64_t episode) {
 }
 
 void ModuleNode::OnGenome(const genome_t& m) {
-  if (m.episode != episode_) NewEpisode(m.episode);
+  if (m.episode != episode_) {
+    NewEpisode(m.episode);
+  } else if (controller_) {
+    // A repeat: the launcher sends GENOME until every module is READY, and in real time every
+    // second for late joiners; datagrams from two senders can also overtake each other, so a
+    // repeat may arrive after the episode started. Rebuilding the controller would wipe its
+    // hormones mid-episode: keep it, and only answer READY again before the first tick.
+    if (static_cast<std::uint64_t>(m.genome_hash) != genome_hash_) {
+      ++stats_.dropped_messages;
+      stats_.last_error = "a second, different genome for this episode was ignored";
+    } else if (ready() && next_tick_ == 0) {
+      announce_ready_ = true;
+    }
+    return;
+  }
   Genome g;
   const std::string error = GenomeFromMessage(m, &g);
   if (!error.empty()) {
@@ -83,7 +97,9 @@ void ModuleNode::OnTopology(const topology_t& m) {
   neighbours_.erase(std::unique(neighbours_.begin(), neighbours_.end()), neighbours_.end());
   if (static_cast<int>(neighbours_.size()) > kDefaultPorts) neighbours_.resize(kDefaultPorts);
   have_topology_ = true;
-  if (ready()) announce_ready_ = true;
+  // READY answers the handshake; the sim repeats TOPOLOGY during a real-time episode, which
+  // must not make a running module report READY again.
+  if (ready() && next_tick_ == 0) announce_ready_ = true;
 }
 
 void ModuleNode::OnSensors(const module_sensors_t& m) {

@@ -78,6 +78,12 @@ int main(int argc, char** argv) {
                  "bus mode, lockstep: at least this many microseconds of wall time per tick")
       ->check(CLI::Range(0, 10000000))
       ->capture_default_str();
+  app.add_option(
+         "--state-rate", node_options.state_rate,
+         "bus mode: SIM/STATE messages per simulated second (0 = once per tick in lockstep, "
+         "40 in real time)")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
   app.add_option("--episodes", episodes,
                  "bus mode: exit after this many episodes (0 = serve until killed)")
       ->check(CLI::NonNegativeNumber)

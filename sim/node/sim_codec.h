@@ -25,7 +25,7 @@ void FillStateMessage(const std::vector<BodyState>& bodies, std::int64_t episode
 topology_t TopologyMessage(const Scenario& scenario, std::int64_t episode);
 
 // SIM/STATE carries the bodies that move (mass > 0), SIM/SCENE the static ones (mass 0: walls,
-// cubes), so the 40 Hz stream does not repeat what never changes. Keeps, in order, the bodies
+// cubes), so the state stream does not repeat what never changes. Keeps, in order, the bodies
 // of that kind and drops the others.
 void KeepMovingBodies(std::vector<BodyState>* bodies);
 void KeepStaticBodies(std::vector<BodyState>* bodies);

@@ -69,12 +69,7 @@ void SimNode::OnControl(const sim_control_t& m) {
         Start();
       } else if (phase_ == Phase::kPaused) {
         steps_left_ = -1;
-        phase_ = Phase::kRunning;
-        tick_deadline_ =
-            Clock::now() + (realtime_
-                                ? std::chrono::duration_cast<Clock::duration>(
-                                      std::chrono::duration<double>(scenario_->control_period()))
-                                : Clock::duration(options_.lockstep_timeout));
+        Resume();
       }
       return;
     case sim_control_t::PAUSE:
@@ -105,6 +100,12 @@ void SimNode::OnControl(const sim_control_t& m) {
 }
 
 void SimNode::Reset(const sim_control_t& m) {
+  if (m.episode == episode_ && phase_ != Phase::kIdle && phase_ != Phase::kReady) {
+    // The launcher repeats RESET until the sim answers; a repeat that arrives after START
+    // (datagrams can overtake each other) must not restart the running episode.
+    ++stats_.dropped_messages;
+    return;
+  }
   ScenarioConfig config;
   const std::string error = ConfigFromReset(m, &config);
   if (!error.empty()) {
@@ -128,7 +129,10 @@ void SimNode::Reset(const sim_control_t& m) {
                    std::vector<double>(static_cast<std::size_t>(scenario_->num_actuators()), 0.0));
   command_tick_.assign(static_cast<std::size_t>(n), -1);
   commands_this_tick_ = 0;
-  next_state_time_ = 0;
+  state_period_ = options_.state_rate > 0 ? 1.0 / options_.state_rate
+                  : realtime_             ? 1.0 / 40.0
+                                          : scenario_->control_period();
+  next_state_time_ = state_period_;  // the state at time 0 goes out below
   phase_ = Phase::kReady;
   ++stats_.episodes;
   bus::PublishTyped(*bus_, channels_.Topology(), [&] {
@@ -153,6 +157,7 @@ void SimNode::Resume() {
       Clock::now() + (realtime_ ? std::chrono::duration_cast<Clock::duration>(
                                       std::chrono::duration<double>(scenario_->control_period()))
                                 : Clock::duration(options_.lockstep_timeout));
+  PublishClock(sim_clock_t::RUNNING);
 }
 
 void SimNode::OnHinge(const std::string& channel, const hinge_command_t& m) {
@@ -219,11 +224,10 @@ void SimNode::Advance() {
       ++stats_.commands;
     }
   }
-  const double period = 1.0 / options_.state_rate;
   const StepStatus status = scenario_->Step([&](double t) {
     if (t + 1e-9 >= next_state_time_) {
       PublishState(t);
-      next_state_time_ += period;
+      next_state_time_ += state_period_;
     }
   });
   ++stats_.ticks;
@@ -257,7 +261,13 @@ void SimNode::PublishTickStart() {
     sensors_msg_.utime = bus::NowUtime();
     bus::PublishTyped(*bus_, sensors_channels_[static_cast<std::size_t>(c)], sensors_msg_);
   }
-  PublishClock(phase_ == Phase::kPaused ? sim_clock_t::PAUSED : sim_clock_t::RUNNING);
+  // Lockstep: modules take the tick from SENSORS and the monitor from STATE, so the clock goes
+  // out when the run state changes and once per simulated second (every datagram wakes every
+  // listening process). Real time: every tick, the pace a late joiner follows.
+  const std::int8_t run_state =
+      phase_ == Phase::kPaused ? sim_clock_t::PAUSED : sim_clock_t::RUNNING;
+  if (realtime_ || run_state != last_run_state_ || scenario_->tick() % 20 == 0)
+    PublishClock(run_state);
   if (scenario_->tick() > 0 && scenario_->tick() % 20 == 0) PublishScene();  // for late joiners
   if (realtime_ && scenario_->tick() % 20 == 0) {  // lets a late module learn the docking
     auto t = TopologyMessage(*scenario_, episode_);
@@ -275,6 +285,7 @@ void SimNode::PublishClock(std::int8_t run_state) {
   c.control_period = scenario_ ? scenario_->control_period() : 0;
   c.clock_mode = realtime_ ? sim_clock_t::MODE_REALTIME : sim_clock_t::MODE_LOCKSTEP;
   c.run_state = run_state;
+  last_run_state_ = run_state;
   bus::PublishTyped(*bus_, clock_channel_, c);
 }
 

@@ -23,7 +23,9 @@ struct SimNodeOptions {
   // Lockstep: how long the sim waits for every module's HINGE(t) before it goes on with the
   // last command of the missing ones (counted in stats().missed_commands).
   std::chrono::milliseconds lockstep_timeout{2000};
-  double state_rate = 40.0;  // SIM/STATE messages per simulated second (>= 30)
+  // SIM/STATE messages per simulated second; 0: once per tick in lockstep (all the fitness
+  // monitor uses) and 40 in real time (smooth for a viewer at wall-clock pace).
+  double state_rate = 0;
   // Lockstep: at least this much wall time per tick (0 = as fast as the modules answer). Gives a
   // passive listener such as lcm-logger time to keep up; results do not depend on it.
   std::chrono::microseconds min_tick_period{0};
@@ -109,8 +111,10 @@ class SimNode {
   Clock::time_point tick_start_;     // when the current tick's SENSORS went out
   module_sensors_t sensors_msg_;     // reused every tick (no allocation once warm)
   sim_state_t state_msg_;
+  double state_period_ = 0;  // simulated seconds between two SIM/STATE messages
   double next_state_time_ = 0;
-  std::vector<BodyState> bodies_;  // scratch
+  std::int8_t last_run_state_ = -1;  // of the last SIM/CLOCK published
+  std::vector<BodyState> bodies_;    // scratch
 };
 
 const char* PhaseName(SimNode::Phase phase);

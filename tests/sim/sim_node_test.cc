@@ -6,6 +6,7 @@
 #include <ahhs/sim_state_t.hpp>
 #include <ahhs/topology_t.hpp>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <set>
 
 #include "bus/lcm_bus.h"
@@ -73,16 +74,18 @@ TEST_CASE("lockstep over the bus equals the same policy run in-process, bit for 
   int states = 0, clocks = 0, topologies = 0, scenes = 0;
   double last_state_time = -1;
   // SIM/STATE: the cart and the bob (they move); SIM/SCENE: the two walls (static, mass 0).
-  bus::SubscribeTyped<sim_state_t>(bus, "AHHS/SIM/STATE",
-                                   [&](const std::string&, const sim_state_t& m) {
-                                     ++states;
-                                     CHECK(m.sim_time >= last_state_time);
-                                     last_state_time = m.sim_time;
-                                     REQUIRE(m.num_bodies == 2);
-                                     CHECK(m.module[0] == 0);
-                                     CHECK(m.mass[0] > 0);
-                                     CHECK(m.mass[1] > 0);
-                                   });
+  bus::SubscribeTyped<sim_state_t>(
+      bus, "AHHS/SIM/STATE", [&](const std::string&, const sim_state_t& m) {
+        ++states;
+        CHECK(m.sim_time >= last_state_time);
+        // on a tick boundary (0.05 s)
+        CHECK(std::fabs(m.sim_time / 0.05 - std::round(m.sim_time / 0.05)) < 1e-6);
+        last_state_time = m.sim_time;
+        REQUIRE(m.num_bodies == 2);
+        CHECK(m.module[0] == 0);
+        CHECK(m.mass[0] > 0);
+        CHECK(m.mass[1] > 0);
+      });
   bus::SubscribeTyped<sim_state_t>(bus, "AHHS/SIM/SCENE",
                                    [&](const std::string&, const sim_state_t& m) {
                                      ++scenes;
@@ -131,8 +134,11 @@ TEST_CASE("lockstep over the bus equals the same policy run in-process, bit for 
   CHECK(node.scenario()->Fitness() == direct.Fitness());
   CHECK(node.scenario()->Fitness() != 0.0);
   bus.Handle(0us);
-  CHECK(states >= 30 * 20);  // at least 30 Hz of simulated time
-  CHECK(clocks >= 400);
+  // Lockstep: one state per tick boundary (what the fitness monitor uses), plus the one at reset
+  // and the final one; the clock at RESET, at the start, once per simulated second (ticks 20,
+  // 40, ..., 380) and three times at the end.
+  CHECK(states == 1 + 400 + 1);
+  CHECK(clocks == 1 + 1 + 19 + 3);
   CHECK(topologies == 1);
   CHECK(scenes == 1 + 400 / 20 - 1);  // at reset, then every 20 ticks (20, 40, ..., 380)
 }
@@ -234,9 +240,46 @@ TEST_CASE("a bad reset is refused with a reason", "[sim][node]") {
   CHECK(node.stats().refused_resets == 2);
 }
 
+TEST_CASE("a late copy of RESET does not restart the episode it belongs to", "[sim][node]") {
+  // The launcher repeats RESET until the sim answers; datagrams of two senders can overtake each
+  // other, so a repeat may arrive after START.
+  bus::LcmBus bus("memq://");
+  sim::SimNode node(&bus, {});
+  FakeModules modules(bus, 3);
+  auto reset = Control(sim_control_t::RESET, 3);
+  reset.seed = 5;
+  reset.duration = 1.0;  // 20 ticks
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);
+  node.Poll(1ms);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);  // a repeat before START: answered again
+  node.Poll(1ms);
+  CHECK(node.stats().episodes == 2);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", Control(sim_control_t::START, 3));
+  for (int k = 0; k < 1000 && node.scenario()->tick() < 5; ++k) node.Poll(1ms);
+  REQUIRE(node.scenario()->tick() >= 5);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);  // late
+  RunToEnd(node);
+  REQUIRE(node.phase() == sim::SimNode::Phase::kFinished);
+  CHECK(node.stats().ticks == 20);
+  CHECK(node.stats().episodes == 2);
+  CHECK(node.stats().dropped_messages == 1);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);  // after the end: still the same episode
+  node.Poll(1ms);
+  CHECK(node.phase() == sim::SimNode::Phase::kFinished);
+  reset.episode = 4;  // a new episode id starts afresh
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);
+  node.Poll(1ms);
+  CHECK(node.phase() == sim::SimNode::Phase::kReady);
+}
+
 TEST_CASE("real time: the latest command is used whatever tick it answered", "[sim][node]") {
   bus::LcmBus bus("memq://");
   sim::SimNode node(&bus, {});
+  int states = 0, clocks = 0;
+  bus::SubscribeTyped<sim_state_t>(bus, "AHHS/SIM/STATE",
+                                   [&](const std::string&, const sim_state_t&) { ++states; });
+  bus::SubscribeTyped<sim_clock_t>(bus, "AHHS/SIM/CLOCK",
+                                   [&](const std::string&, const sim_clock_t&) { ++clocks; });
   auto reset = Control(sim_control_t::RESET, 9);
   reset.clock_mode = sim_control_t::MODE_REALTIME;
   reset.duration = 0.25;  // 5 ticks, 0.25 s of wall time
@@ -257,4 +300,9 @@ TEST_CASE("real time: the latest command is used whatever tick it answered", "[s
   CHECK(node.stats().missed_commands == 0);
   const auto& p = static_cast<const sim::PendulumScenario&>(*node.scenario());
   CHECK(p.state().x > 0.05);  // pushed right all along
+  bus.Handle(0us);
+  // Real time: STATE at 40 Hz for viewers (10 in 0.25 s, plus reset and final); the clock at
+  // RESET, every tick, and three times at the end.
+  CHECK(states == 1 + 10 + 1);
+  CHECK(clocks == 1 + 5 + 3);
 }

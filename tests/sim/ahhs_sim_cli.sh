@@ -28,4 +28,6 @@ expect_error "unknown drive" "$sim" --drive dance
 expect_error "--modules" "$sim" --drive zero --modules five
 expect_error "--seed" "$sim" --drive zero --seed -x
 expect_error "cannot open LCM bus" "$sim" --lcm-url "nosuch://x"
+expect_error "--state-rate" "$sim" --state-rate -1
+expect_error "--state-rate" "$sim" --state-rate fast
 echo "ahhs-sim: all checks passed"

@@ -12,7 +12,7 @@ const std::vector<InProcessBus::Subscription*>& InProcessBus::Route(const std::s
   // First message on this channel since the subscriptions changed: match every expression once.
   std::vector<Subscription*> takers;
   for (const auto& s : subscriptions_)
-    if (std::regex_match(channel, s->pattern)) takers.push_back(s.get());
+    if (regexec(&s->pattern, channel.c_str(), 0, nullptr, 0) == 0) takers.push_back(s.get());
   return routes_.emplace(channel, std::move(takers)).first->second;
 }
 
@@ -53,11 +53,14 @@ bool InProcessBus::Publish(const std::string& channel, const void* data, std::si
 int InProcessBus::Subscribe(const std::string& channel_regex, RawHandler handler,
                             int queue_capacity) {
   auto s = std::make_unique<Subscription>();
-  try {
-    s->pattern = std::regex(channel_regex);  // ECMAScript: closest to LCM's (PCRE) syntax
-  } catch (const std::regex_error& e) {
-    throw BusError("cannot subscribe to '" + channel_regex + "': " + e.what());
+  const std::string whole = "^(" + channel_regex + ")$";  // the whole name, as LCM matches
+  const int error = regcomp(&s->pattern, whole.c_str(), REG_EXTENDED | REG_NOSUB);
+  if (error != 0) {
+    char why[256];
+    regerror(error, &s->pattern, why, sizeof why);
+    throw BusError("cannot subscribe to '" + channel_regex + "': " + why);
   }
+  s->compiled = true;
   s->id = next_id_++;
   s->handler = std::move(handler);
   s->capacity = std::max(1, queue_capacity);

@@ -7,7 +7,8 @@
 // Semantics (those of LcmBus over memq://):
 // - a subscription takes every channel its regular expression matches as a whole (LCM anchors
 //   the expression at both ends); several subscriptions may take the same message, in the order
-//   they were made;
+//   they were made. Expressions are POSIX extended ones; LCM's are PCRE, which reads the common
+//   part (literals, `.`, `*`, `+`, `?`, `[...]`, `|`, groups) the same way;
 // - a message is queued for the subscriptions that match when it is published; one that nobody
 //   hears is counted as published and dropped;
 // - Handle() dispatches everything queued, including what handlers publish meanwhile, and
@@ -20,9 +21,10 @@
 // Not thread-safe: one thread publishes and handles. Nothing here does I/O or system calls.
 #pragma once
 
+#include <regex.h>
+
 #include <cstdint>
 #include <memory>
-#include <regex>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -51,8 +53,15 @@ class InProcessBus final : public Bus {
 
  private:
   struct Subscription {
+    Subscription() = default;
+    Subscription(const Subscription&) = delete;
+    Subscription& operator=(const Subscription&) = delete;
+    ~Subscription() {
+      if (compiled) regfree(&pattern);
+    }
     int id = 0;
-    std::regex pattern;
+    regex_t pattern{};
+    bool compiled = false;
     RawHandler handler;
     int capacity = kDefaultQueueCapacity;
     int waiting = 0;  // messages queued for it

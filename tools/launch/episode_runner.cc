@@ -185,7 +185,7 @@ EpisodeResult RunFused(const EpisodeSpec& spec) {
   }
   // One shared bus: one Handle() dispatches to every node, then each node acts on what it got.
   // Two rounds per call follow the lockstep (commands -> sim publishes SENSORS -> modules step
-  // and publish HINGE and HORMONE); a Handle per node would cost a syscall each.
+  // and publish HINGE and HORMONE); on memq:// a Handle per node would cost a syscall each.
   auto pump = [&](std::chrono::microseconds wait) {
     bus.Handle(std::chrono::microseconds(0));
     sim_node.Process();

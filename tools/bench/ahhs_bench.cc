@@ -12,6 +12,7 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <set>
 #include <vector>
 
 #include "modules/core/genome_json.h"
@@ -186,6 +187,8 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
 
   std::vector<double> physics, replay, direct, fused, memq, warm, fused_ratio, fused_replay_ratio,
       memq_ratio, memq_replay_ratio, warm_ratio;
+  // Every fitness any run gave: one value, or the arenas disagree (a bug, not noise).
+  std::set<double> fitnesses;
   double replay_fitness = 0, direct_fitness = 0, fused_fitness = 0, memq_fitness = 0,
          warm_fitness = std::nan("");
   al::EpisodeSpec memq_spec = spec;
@@ -209,6 +212,7 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
     const auto p = Timed(physics_replay);
     replay.push_back(p.first);
     replay_fitness = p.second;
+    fitnesses.insert(p.second);
     const auto d = Timed([&] { return al::RunDirect(spec); });
     const auto f = Timed([&] { return al::RunFused(spec).fitness; });
     const auto q = Timed([&] { return al::RunFused(memq_spec).fitness; });
@@ -222,6 +226,7 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
     direct_fitness = d.second;
     fused_fitness = f.second;
     memq_fitness = q.second;
+    fitnesses.insert({d.second, f.second, q.second});
     if (processes && failure.empty()) {
       const auto w = Timed([&] {
         al::EpisodeSpec next = spec;
@@ -233,6 +238,7 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
       warm.push_back(w.first);
       warm_ratio.push_back(w.first / f.first);
       warm_fitness = w.second;
+      if (!std::isnan(w.second)) fitnesses.insert(w.second);
     }
   }
   processes.reset();
@@ -276,6 +282,14 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   std::printf("    (starting its 7 processes    %7.3f s, once per arena)\n", start_s);
   std::printf("  ahhs-launch, whole run         %7.3f s   fitness %.17g   %.2fx fused\n",
               cold.first, cold.second, cold.first / Median(fused));
+  if (!std::isnan(cold.second)) fitnesses.insert(cold.second);
+  if (fitnesses.size() == 1) {
+    std::printf("  every run gave the same fitness to the bit\n");
+  } else {
+    std::printf("  WARNING: the runs gave %zu different fitness values:", fitnesses.size());
+    for (double f : fitnesses) std::printf(" %.17g", f);
+    std::printf("\n");
+  }
   if (!failure.empty() || std::isnan(cold.second))
     std::printf(
         "  (a multi-process run failed%s%s: run under tools/ahhs-netns, or give --lcm-url)\n",

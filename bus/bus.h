@@ -21,7 +21,7 @@ class BusError : public std::runtime_error {
 using RawHandler =
     std::function<void(const std::string& channel, const std::uint8_t* data, std::size_t size)>;
 
-// Messages a subscription buffers between two Handle() calls before the oldest are dropped.
+// Messages a subscription buffers between two Handle() calls before messages are dropped.
 // LCM's own default is 30, far too few for a lockstep tick with many modules.
 inline constexpr int kDefaultQueueCapacity = 10000;
 

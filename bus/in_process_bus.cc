@@ -1,7 +1,6 @@
 #include "bus/in_process_bus.h"
 
 #include <algorithm>
-#include <cstring>
 #include <thread>
 
 namespace ahhs::bus {

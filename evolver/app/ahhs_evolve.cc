@@ -131,7 +131,7 @@ int main(int argc, char** argv) {
   CLI::App app{"ahhs-evolve: evolves hormone controllers (the paper's GA) on evaluation workers"};
   app.set_config("--config", "", "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
   std::string scenario = "gait", joints = "damped", variant = "ahhs2", out_dir, resume_dir,
-              arena = "direct", url = ahhs::bus::kDefaultLcmUrl;
+              arena = "direct", url = ahhs::bus::kDefaultLcmUrl, mutation_profile = "paper";
   int modules = 5, hormones = 5, rules = 30, population = 20, generations = 200, elitism = 1,
       workers = -1;
   double duration = 0, mutation_rate = 0.15, mutation_max_change = 0.1, crossover_rate = 0.05;
@@ -160,6 +160,11 @@ int main(int argc, char** argv) {
   app.add_option("--mutation-rate", mutation_rate, "probability that a gene mutates")
       ->capture_default_str();
   app.add_option("--mutation-max-change", mutation_max_change, "largest change of a real field")
+      ->capture_default_str();
+  app.add_option("--mutation-profile", mutation_profile,
+                 "step of each mutated field: paper (every real field by at most the max change) "
+                 "or fine-doses (the first briefing's: AHHS2 doses by 1/50 of it, indices by 1)")
+      ->check(CLI::IsMember({"paper", "fine-doses"}))
       ->capture_default_str();
   app.add_option("--crossover-rate", crossover_rate, "two-point crossover rate")
       ->capture_default_str();
@@ -196,10 +201,10 @@ int main(int argc, char** argv) {
   ev::EvolveConfig config;
   try {
     if (!resume_dir.empty()) {
-      for (const char* name :
-           {"--scenario", "--joints", "--modules", "--duration", "--variant", "--hormones",
-            "--rules", "--population", "--generations", "--elitism", "--mutation-rate",
-            "--mutation-max-change", "--crossover-rate", "--seed", "--overwrite"})
+      for (const char* name : {"--scenario", "--joints", "--modules", "--duration", "--variant",
+                               "--hormones", "--rules", "--population", "--generations",
+                               "--elitism", "--mutation-rate", "--mutation-max-change",
+                               "--mutation-profile", "--crossover-rate", "--seed", "--overwrite"})
         if (app.count(name))
           throw std::invalid_argument(std::string(name) +
                                       " cannot be given with --resume: a resumed run keeps "
@@ -225,6 +230,7 @@ int main(int argc, char** argv) {
       config.ga.elitism = elitism;
       config.ga.mutation.gene_rate = mutation_rate;
       config.ga.mutation.max_change = mutation_max_change;
+      config.ga.mutation.profile = ahhs::modules::ParseMutationProfile(mutation_profile);
       config.ga.crossover_rate = crossover_rate;
       config.seed = seed;
       if (duration < 0) throw std::invalid_argument("--duration must not be negative");

@@ -35,6 +35,7 @@ json ConfigToJson(const EvolveConfig& c) {
               {"elitism", c.ga.elitism},
               {"mutation_rate", c.ga.mutation.gene_rate},
               {"mutation_max_change", c.ga.mutation.max_change},
+              {"mutation_profile", modules::MutationProfileName(c.ga.mutation.profile)},
               {"crossover_rate", c.ga.crossover_rate},
               {"selection_epsilon", c.ga.selection_epsilon},
               {"seed", c.seed}};
@@ -58,6 +59,10 @@ EvolveConfig ConfigFromJson(const json& doc) {
     c.ga.elitism = doc.at("elitism").get<int>();
     c.ga.mutation.gene_rate = doc.at("mutation_rate").get<double>();
     c.ga.mutation.max_change = doc.at("mutation_max_change").get<double>();
+    // Runs stored before profiles existed mutated with what is now "fine-doses".
+    c.ga.mutation.profile = modules::ParseMutationProfile(
+        doc.value("mutation_profile",
+                  std::string(modules::MutationProfileName(modules::MutationProfile::kFineDoses))));
     c.ga.crossover_rate = doc.at("crossover_rate").get<double>();
     c.ga.selection_epsilon = doc.at("selection_epsilon").get<double>();
     c.seed = doc.at("seed").get<std::uint64_t>();

@@ -98,9 +98,15 @@ inline double Tent(double x, double zeta, double eta) {
   return d < eta ? 1.0 - d / eta : 0.0;
 }
 
-// The AHHS1 trigger: 1 when x is strictly above (below) tau, else 0.
+// Values closer than this to an AHHS1 threshold count as equal to it. Concentrations that are
+// equal in exact arithmetic can differ by a few units in the last place once diffusion has
+// summed them in different orders (a saturated middle module gets 1 - 2q + q + q = 1 - 1e-16):
+// without a tie band a "below tau = 1" rule would fire there and not in an end module.
+constexpr double kThresholdTie = 1e-12;
+
+// The AHHS1 trigger: 1 when x is above (below) tau by more than kThresholdTie, else 0.
 inline bool Threshold(double x, double tau, Direction dir) {
-  return dir == Direction::kAbove ? x > tau : x < tau;
+  return dir == Direction::kAbove ? x > tau + kThresholdTie : x < tau - kThresholdTie;
 }
 
 }  // namespace ahhs::modules

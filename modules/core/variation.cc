@@ -101,7 +101,11 @@ void ShiftWeight(Ahhs2Rule* r, double m, Rng& rng) {
   for (double& v : r->weights) v /= sum;
 }
 
-void MutateAhhs2Rule(Ahhs2Rule* r, const Shape& s, double m, Rng& rng) {
+void MutateAhhs2Rule(Ahhs2Rule* r, const Shape& s, const MutationParams& params, Rng& rng) {
+  const double m = params.max_change;
+  const bool fine = params.profile == MutationProfile::kFineDoses;
+  const double dose_step = fine ? m / 50 : m;  // lambda, kappa
+  const double index_step = fine ? 1.0 : m;    // floating indices
   // 15 equally likely outcomes: 7 weight shifts, or one of the 8 other fields.
   const int pick = rng.UniformInt(15);
   if (pick < 7) return ShiftWeight(r, m, rng);
@@ -113,22 +117,22 @@ void MutateAhhs2Rule(Ahhs2Rule* r, const Shape& s, double m, Rng& rng) {
       r->eta = Clamp(r->eta + Step(rng, m), Ranges::kEtaMin, Ranges::kEtaMax);
       break;
     case 2:
-      r->lambda = Clamp(r->lambda + Step(rng, m) / 50, -Ranges::kLambdaMax, Ranges::kLambdaMax);
+      r->lambda = Clamp(r->lambda + Step(rng, dose_step), -Ranges::kLambdaMax, Ranges::kLambdaMax);
       break;
     case 3:
-      r->kappa = Clamp(r->kappa + Step(rng, m) / 50, -Ranges::kKappaMax, Ranges::kKappaMax);
+      r->kappa = Clamp(r->kappa + Step(rng, dose_step), -Ranges::kKappaMax, Ranges::kKappaMax);
       break;
     case 4:
-      r->sensor = WrapIndex(r->sensor + Step(rng, 1.0), s.sensors);
+      r->sensor = WrapIndex(r->sensor + Step(rng, index_step), s.sensors);
       break;
     case 5:
-      r->input = WrapIndex(r->input + Step(rng, 1.0), s.hormones);
+      r->input = WrapIndex(r->input + Step(rng, index_step), s.hormones);
       break;
     case 6:
-      r->output = WrapIndex(r->output + Step(rng, 1.0), s.hormones);
+      r->output = WrapIndex(r->output + Step(rng, index_step), s.hormones);
       break;
     default:
-      r->actuator = WrapIndex(r->actuator + Step(rng, 1.0), s.actuators);
+      r->actuator = WrapIndex(r->actuator + Step(rng, index_step), s.actuators);
       break;
   }
 }
@@ -165,12 +169,13 @@ void MutateAhhs1Rule(Ahhs1Rule* r, const Shape& s, double m, Rng& rng) {
   }
 }
 
-void MutateGene(Genome* g, int gene, double m, Rng& rng) {
+void MutateGene(Genome* g, int gene, const MutationParams& params, Rng& rng) {
   const Shape s = g->shape();
+  const double m = params.max_change;
   if (gene < s.hormones) return MutateHormone(&g->hormones[static_cast<std::size_t>(gene)], m, rng);
   const auto r = static_cast<std::size_t>(gene - s.hormones);
   if (g->variant == Variant::kAhhs2)
-    MutateAhhs2Rule(&g->ahhs2_rules[r], s, m, rng);
+    MutateAhhs2Rule(&g->ahhs2_rules[r], s, params, rng);
   else
     MutateAhhs1Rule(&g->ahhs1_rules[r], s, m, rng);
 }
@@ -186,6 +191,16 @@ void CrossList(std::vector<T>* a, std::vector<T>* b, Rng& rng) {
 }
 
 }  // namespace
+
+const char* MutationProfileName(MutationProfile profile) {
+  return profile == MutationProfile::kPaper ? "paper" : "fine-doses";
+}
+
+MutationProfile ParseMutationProfile(const std::string& name) {
+  if (name == "paper") return MutationProfile::kPaper;
+  if (name == "fine-doses") return MutationProfile::kFineDoses;
+  throw std::invalid_argument("unknown mutation profile '" + name + "' (use paper or fine-doses)");
+}
 
 Genome RandomGenome(const Shape& s, Rng& rng) {
   if (s.hormones < 1 || s.sensors < 1 || s.actuators < 1 || s.rules < 0 ||
@@ -211,14 +226,14 @@ int Mutate(Genome* g, const MutationParams& params, Rng& rng) {
   int mutated = 0;
   for (int gene = 0; gene < genes; ++gene) {
     if (!rng.Bernoulli(params.gene_rate)) continue;
-    MutateGene(g, gene, params.max_change, rng);
+    MutateGene(g, gene, params, rng);
     ++mutated;
   }
   return mutated;
 }
 
 void MutateOneGene(Genome* g, const MutationParams& params, Rng& rng) {
-  MutateGene(g, rng.UniformInt(g->num_hormones() + g->num_rules()), params.max_change, rng);
+  MutateGene(g, rng.UniformInt(g->num_hormones() + g->num_rules()), params, rng);
 }
 
 std::pair<Genome, Genome> Crossover(const Genome& a, const Genome& b, Rng& rng) {

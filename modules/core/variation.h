@@ -2,6 +2,7 @@
 // and "Variation"). Every draw comes from the Rng passed in; the same seed gives the same genome.
 #pragma once
 
+#include <string>
 #include <utility>
 
 #include "modules/core/genome.h"
@@ -9,9 +10,22 @@
 
 namespace ahhs::modules {
 
+// Which step each field of a mutated gene takes (docs/model.md, "Variation").
+// - paper: the paper's operator, "a maximal, absolute change of range 0.1" for every real field
+//   of both variants: every real field, AHHS2 floating indices included, moves by +-U(0, m).
+// - fine-doses: the operator of this project's first briefing, kept to compare against: AHHS2
+//   lambda and kappa move by +-U(0, m / 50) and AHHS2 floating indices by +-U(0, 1); AHHS1 and
+//   hormones as in paper. Runs stored before profiles existed used it.
+enum class MutationProfile { kPaper, kFineDoses };
+
+const char* MutationProfileName(MutationProfile profile);  // "paper" / "fine-doses"
+// Throws std::invalid_argument naming the choices.
+MutationProfile ParseMutationProfile(const std::string& name);
+
 struct MutationParams {
   double gene_rate = 0.15;  // probability that one gene (a rule or a hormone) mutates
   double max_change = 0.1;  // m: largest absolute change of a real field
+  MutationProfile profile = MutationProfile::kPaper;
 };
 
 // A random genome of the given shape. Throws std::invalid_argument for an impossible shape.

@@ -94,7 +94,9 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   bool verbose = false;
   app.add_option("--scenario", scenario, "gait or pendulum")->capture_default_str();
-  auto* drive_opt = app.add_option("--drive", drive, "standalone: built-in commands, zero or wave");
+  auto* drive_opt = app.add_option(
+      "--drive", drive,
+      "standalone: built-in commands: zero, wave, swingup (pendulum) or inchworm (gait)");
   app.add_option("--joints", joints, "gait docking: damped or fixed")->capture_default_str();
   app.add_option("--modules", modules, "gait: modules in the chain (>= 2)")->capture_default_str();
   app.add_option("--seed", seed, "episode seed")->capture_default_str();
@@ -124,6 +126,9 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--modules: a gait organism needs at least 2 modules");
     const as::DriveKind drive_kind = as::ParseDrive(drive);
     auto sim = as::MakeScenario(config);
+    if (!as::DriveFits(drive_kind, *sim))
+      throw std::invalid_argument("--drive " + drive + " is not defined for the " +
+                                  as::ScenarioName(config.kind) + " task");
     sim->Reset(seed);
     std::vector<double> command(static_cast<std::size_t>(sim->num_actuators()));
     const auto t0 = std::chrono::steady_clock::now();

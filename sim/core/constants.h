@@ -7,33 +7,45 @@
 namespace ahhs::sim {
 
 struct PendulumConstants {
-  double control_period = 0.05;                   // s per controller tick
-  int ticks = 3000;                               // ticks per episode (150 s)
-  double integration_step = 0.01;                 // s, RK4 (5 substeps per tick)
-  double gravity = 9.81;                          // m/s^2
-  double length = 0.5;                            // m, pivot to point mass (massless rod)
-  double pivot_friction = 0.05;                   // 1/s, viscous: d(omega)/dt -= friction * omega
-  double max_angular_speed = 0.05 * M_PI / 0.05;  // rad/s: at most 9 degrees per tick
-  double wall_inner = 1.0;                        // m, inner faces of the walls at x = +-wall_inner
-  double cart_half_width = 0.1;                   // m
-  double max_speed = 1.0;                         // m/s, v_cmd = max_speed * (A1 - A0) / 2
-  double motor_time_constant = 0.1;               // s, first-order lag from v_cmd to cart speed
-  double wall_sensor_range = 1.0;  // m, proximity 1 at contact, 0 at this gap or more
-  double noise = 0.023;            // uniform noise +-noise (fraction of the [0, 1] range)
-  double cart_mass = 1.0;          // kg (reported in SIM/STATE only; the cart is driven)
-  double bob_mass = 0.1;           // kg (reported only)
+  // s per controller tick. The paper's slow sampling: a pendulum that keeps turning passes the
+  // bottom at 2 sqrt(g / l) = 8.86 rad/s or a little faster, about 9 degrees per tick
+  // (docs/scenarios.md). Not a speed limit: nothing caps the angular speed.
+  double control_period = 0.0175;
+  int ticks = 3000;                  // ticks per episode (52.5 s)
+  double integration_step = 0.0035;  // s, RK4 (5 substeps per tick)
+  double gravity = 9.81;             // m/s^2
+  double length = 0.5;               // m, pivot to point mass (massless rod)
+  double pivot_friction = 0.05;      // 1/s, viscous: d(omega)/dt -= friction * omega
+  // rad/s: the angular-speed sensors read 1 at this speed (9 degrees per tick) and saturate above.
+  double spin_sensor_range = 0.05 * M_PI / 0.0175;
+  double wall_inner = 1.0;           // m, inner faces of the walls at x = +-wall_inner
+  double cart_half_width = 0.1;      // m
+  double max_speed = 1.0;            // m/s, v_cmd = max_speed * (A1 - A0) / 2
+  double motor_time_constant = 0.1;  // s, first-order lag from v_cmd to cart speed
+  double wall_sensor_range = 1.0;    // m, proximity 1 at contact, 0 at this gap or more
+  double noise = 0.023;              // uniform noise +-noise (fraction of the [0, 1] range)
+  double cart_mass = 1.0;            // kg (reported in SIM/STATE only; the cart is driven)
+  double bob_mass = 0.1;             // kg (reported only)
 };
 
 struct GaitConstants {
   double control_period = 0.05;  // s per controller tick (20 Hz)
-  double physics_step = 0.0125;  // s, dWorldQuickStep: 4 steps per control tick
-  int solver_iterations = 16;    // dWorldSetQuickStepNumIterations (docs/scenarios.md)
-  // Successive over-relaxation of the quick-step solver (dWorldSetQuickStepW; ODE's default is
-  // 1.3). The damped chain (10 bodies, 4 soft docks) needs 1.5 for the servo to hold two
-  // modules within 16 iterations; the fixed chain (6 bodies) is closest to a converged solver
-  // at 1.3. Measured, see docs/scenarios.md.
+  double physics_step = 0.0125;  // s per physics step: 4 steps per control tick
+  // The solver. ODE's exact (Dantzig LCP) dWorldStep: with the iterative dWorldQuickStep the
+  // under-converged contact and servo forces made a chain under constant commands chatter and
+  // creep (up to 0.9 m in 55 s); docs/scenarios.md has the measurements. The quick-step settings
+  // below apply only with iterative_solver = true (kept to compare against).
+  bool iterative_solver = false;
+  int solver_iterations = 16;  // dWorldSetQuickStepNumIterations
+  // Successive over-relaxation of the quick-step solver (dWorldSetQuickStepW).
   double solver_relaxation_fixed = 1.3;
   double solver_relaxation_damped = 1.5;
+  // Resting: an organism whose every body moves slower than these for rest_steps physics steps
+  // is put to rest (ODE's auto-disable) until a hinge target changes. A resting chain cannot
+  // creep by contact micro-events (docs/scenarios.md). 0 steps: never rest.
+  double rest_linear_speed = 0.01;   // m/s
+  double rest_angular_speed = 0.01;  // rad/s
+  int rest_steps = 10;
   double duration = 60.0;         // s per episode
   double gravity = 9.81;          // m/s^2
   double module_size = 0.1;       // m, a module is a cube of this edge, two halves along x

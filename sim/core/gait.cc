@@ -120,6 +120,14 @@ void GaitScenario::Build() {
   dWorldSetQuickStepNumIterations(world_, k_.solver_iterations);
   dWorldSetQuickStepW(
       world_, joints_ == Joints::kFixed ? k_.solver_relaxation_fixed : k_.solver_relaxation_damped);
+  if (k_.rest_steps > 0) {
+    dWorldSetAutoDisableFlag(world_, 1);
+    dWorldSetAutoDisableLinearThreshold(world_, k_.rest_linear_speed);
+    dWorldSetAutoDisableAngularThreshold(world_, k_.rest_angular_speed);
+    dWorldSetAutoDisableSteps(world_, k_.rest_steps);
+    dWorldSetAutoDisableTime(world_, 0);
+    dWorldSetAutoDisableAverageSamplesCount(world_, 1);
+  }
   dWorldSetERP(world_, k_.world_erp);
   dWorldSetCFM(world_, k_.world_cfm);
   space_ = dSimpleSpaceCreate(nullptr);
@@ -222,8 +230,13 @@ std::vector<std::pair<int, int>> GaitScenario::Docking() const {
 
 void GaitScenario::SetActuators(int compartment, const double* values) {
   if (!std::isfinite(values[0])) return;  // never let a bad value into the physics
-  modules_[static_cast<std::size_t>(compartment)].target =
-      k_.hinge_range * std::clamp(values[0], -1.0, 1.0);
+  Module& m = modules_[static_cast<std::size_t>(compartment)];
+  const double target = k_.hinge_range * std::clamp(values[0], -1.0, 1.0);
+  if (target == m.target) return;
+  m.target = target;
+  // A new target wakes a resting organism (ODE then wakes every body connected to this one).
+  dBodyEnable(m.front.body);
+  dBodyEnable(m.back.body);
 }
 
 void GaitScenario::NearCallback(void* data, dGeomID a, dGeomID b) {
@@ -254,7 +267,10 @@ void GaitScenario::PhysicsStep() {
                         std::clamp(k_.servo_gain * error, -k_.servo_max_speed, k_.servo_max_speed));
   }
   dSpaceCollide(space_, this, &GaitScenario::NearCallback);
-  dWorldQuickStep(world_, k_.physics_step);
+  if (k_.iterative_solver)
+    dWorldQuickStep(world_, k_.physics_step);
+  else
+    dWorldStep(world_, k_.physics_step);
   dJointGroupEmpty(contacts_);
 }
 

@@ -47,11 +47,12 @@ void PendulumScenario::SetActuators(int compartment, const double* values) {
 
 namespace {
 
-// sin and cos of (phi + d) from sin and cos of phi, for |d| <= 0.04 rad (the largest RK4 stage
-// offset is max_angular_speed * integration_step = 0.0314): Taylor series of sin d to d^7 and of
-// cos d to d^8, whose remainders (< 1e-18) are below double rounding of the result. One library
-// sincos per RK4 step instead of four (docs/performance.md). Multiplications by constant
-// reciprocals, not divisions, for the same reason.
+// sin and cos of (phi + d) from sin and cos of phi, for |d| <= 0.04 rad (an RK4 stage is offset
+// by about omega * integration_step: 0.035 rad at 10 rad/s, faster than a turning pendulum
+// goes): Taylor series of sin d to d^7 and of cos d to d^8, whose remainders (< 1e-18) are below
+// double rounding of the result. One library sincos per RK4 step instead of four
+// (docs/performance.md). Multiplications by constant reciprocals, not divisions, for the same
+// reason.
 inline void SinCosNear(double sin_phi, double cos_phi, double d, double* sin_out, double* cos_out) {
   constexpr double k6 = 1.0 / 6, k20 = 1.0 / 20, k42 = 1.0 / 42;
   constexpr double k12 = 1.0 / 12, k30 = 1.0 / 30, k56 = 1.0 / 56;
@@ -62,8 +63,8 @@ inline void SinCosNear(double sin_phi, double cos_phi, double d, double* sin_out
   *cos_out = cos_phi * cos_d - sin_phi * sin_d;
 }
 
-// sin and cos of phi + d for any d: near phi from the series, otherwise from the library (only
-// with a raised angular speed cap, in tests). Kept out of line so the RK4 stages stay inlined.
+// sin and cos of phi + d for any d: near phi from the series, otherwise from the library (a
+// pendulum spun faster than about 11 rad/s). Kept out of line so the RK4 stages stay inlined.
 [[gnu::noinline]] void SinCosFar(double angle, double* sin_out, double* cos_out) {
   *sin_out = std::sin(angle);
   *cos_out = std::cos(angle);
@@ -86,15 +87,14 @@ void PendulumScenario::Integrate(double v_cmd) {
   const double inv_tau = 1 / k_.motor_time_constant, inv_length = 1 / k_.length;
   // Derivatives of (x, v, phi, omega) with the cart speed following v_cmd through a first-order
   // lag. The pivot's acceleration a drives the pendulum: phi'' = (g sin phi + a cos phi) / l.
-  // The first stage is at phi itself; the others are within 0.0314 rad of it.
+  // The first stage is at phi itself; the others are close to it.
   auto deriv = [&](const double s[4], double d[4], bool at_phi) {
     const double a = (v_cmd - s[1]) * inv_tau;
     double sin_phi = sin0, cos_phi = cos0;
     if (!at_phi) SinCosAt(phi0, sin0, cos0, s[2], &sin_phi, &cos_phi);
     d[0] = s[1];
     d[1] = a;
-    // Slow sampling: the pendulum turns at most max_angular_speed, within a step too.
-    d[2] = std::clamp(s[3], -k_.max_angular_speed, k_.max_angular_speed);
+    d[2] = s[3];
     d[3] = (k_.gravity * sin_phi + a * cos_phi) * inv_length - k_.pivot_friction * s[3];
   };
   const double s0[4] = {state_.x, state_.v, state_.phi, state_.omega};
@@ -122,7 +122,6 @@ void PendulumScenario::Integrate(double v_cmd) {
       state_.v = 0;
     }
   }
-  state_.omega = std::clamp(state_.omega, -k_.max_angular_speed, k_.max_angular_speed);
   if (std::fabs(state_.phi) > M_PI) state_.phi = WrapAngle(state_.phi);
 }
 
@@ -162,8 +161,8 @@ void PendulumScenario::SampleSensors() {
   s[kWallRight] = std::max(0.0, 1 - gap_right / k_.wall_sensor_range);
   s[kSpeedLeft] = std::max(0.0, -state_.v) / k_.max_speed;
   s[kSpeedRight] = std::max(0.0, state_.v) / k_.max_speed;
-  s[kSpinPositive] = std::max(0.0, state_.omega) / k_.max_angular_speed;
-  s[kSpinNegative] = std::max(0.0, -state_.omega) / k_.max_angular_speed;
+  s[kSpinPositive] = std::min(1.0, std::max(0.0, state_.omega) / k_.spin_sensor_range);
+  s[kSpinNegative] = std::min(1.0, std::max(0.0, -state_.omega) / k_.spin_sensor_range);
   // Independent uniform noise on every reading, in sensor order, then clamped to [0, 1].
   for (int j = 0; j < kPendulumSensors; ++j) {
     const double u = static_cast<double>(noise_rng_() >> 11) * 0x1.0p-53;

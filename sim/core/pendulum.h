@@ -20,7 +20,7 @@ enum PendulumSensor : int {
   kWallRight = 5,
   kSpeedLeft = 6,  // cart speed to the left / max speed
   kSpeedRight = 7,
-  kSpinPositive = 8,  // counter-clockwise angular velocity / max angular speed
+  kSpinPositive = 8,  // counter-clockwise angular speed / spin_sensor_range, at most 1
   kSpinNegative = 9,  // clockwise
   kPendulumSensors = 10,
 };

@@ -88,7 +88,7 @@ pgrep -f "arena INTR" && fail "orphan processes left after Ctrl-C"
 echo "interrupted: exit status $rc, no orphans"
 
 echo "== 5. 5 % of messages dropped (fault injection of the bus, in every process)"
-AHHS_FAULT_DROP=0.05 AHHS_FAULT_SEED=3 "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 30 \
+AHHS_FAULT_DROP=0.05 AHHS_FAULT_SEED=3 "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 10.5 \
   --lockstep-timeout-ms 20 --lcm-url "$url" >$tmp/drop.out 2>$tmp/drop.err || { cat $tmp/drop.err; fail "lossy run"; }
 cat $tmp/drop.out; grep -E "^ahhs-(sim|module)" $tmp/drop.err
 grep -q "finished after 600 ticks" $tmp/drop.err || fail "lossy episode did not run to the end"

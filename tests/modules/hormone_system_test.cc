@@ -63,12 +63,17 @@ TEST_CASE("tent trigger, paper eq. 2", "[model]") {
   CHECK(Tent(-0.2, -0.1, 0.2) == Approx(0.5).margin(kTol));
 }
 
-TEST_CASE("AHHS1 threshold trigger: strict, both directions", "[model]") {
+TEST_CASE("AHHS1 threshold trigger: strict beyond a tie band, both directions", "[model]") {
   CHECK(Threshold(0.6, 0.5, Direction::kAbove));
   CHECK_FALSE(Threshold(0.5, 0.5, Direction::kAbove));
   CHECK_FALSE(Threshold(0.4, 0.5, Direction::kAbove));
   CHECK(Threshold(0.4, 0.5, Direction::kBelow));
   CHECK_FALSE(Threshold(0.5, 0.5, Direction::kBelow));
+  // Within kThresholdTie of tau counts as tau: rounding never decides a trigger.
+  CHECK_FALSE(Threshold(1.0 - 1e-16, 1.0, Direction::kBelow));
+  CHECK_FALSE(Threshold(0.5 + 1e-15, 0.5, Direction::kAbove));
+  CHECK(Threshold(1.0 - 1e-9, 1.0, Direction::kBelow));
+  CHECK(Threshold(0.5 + 1e-9, 0.5, Direction::kAbove));
 }
 
 TEST_CASE("AHHS2 sensor part with floating-index split", "[model]") {

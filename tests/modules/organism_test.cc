@@ -106,3 +106,38 @@ TEST_CASE("bad docking is refused", "[model]") {
   CHECK_THROWS_AS(Organism(c, {{1, 1}, {0, 0}}), std::invalid_argument);  // duplicate
   CHECK_THROWS_AS(Organism(c, {{1, 2, 3, 4, 5}, {0}, {0}, {0}, {0}, {0}}), std::invalid_argument);
 }
+
+TEST_CASE("AHHS1: states equal in exact arithmetic trigger the same rules after diffusion",
+          "[model]") {
+  // Hormone 0 saturates at 1 in every module of a 5-module chain (alpha 0.1, no decay). In
+  // exact arithmetic every module then holds exactly 1 after diffusion, whatever D is, so a
+  // "below tau = 1" actuator rule never fires again. In floating point a middle module gets
+  // (1 - 2q) + q + q, which is 1 - 1e-16 for about a fifth of the D values in [0, 0.1]; the tie
+  // band of Threshold (kThresholdTie) makes it count as 1.
+  int diverging = 0;
+  for (int k = 0; k <= 100; ++k) {
+    Genome g;
+    g.variant = Variant::kAhhs1;
+    g.num_sensors = 1;
+    g.num_actuators = 1;
+    g.hormones = {HormoneGene{0.1, 0.0, k * 0.001}};
+    g.ahhs1_rules = {Ahhs1Rule{Ahhs1Type::kActuator, 0, 0, 1.0, Direction::kBelow, 0.0, 0.2}};
+    Controller c(g);
+    Organism o(c, Organism::Chain(5));
+    const std::vector<TickInput> inputs(5, TickInput{nullptr, nullptr, nullptr, 0});
+    for (int t = 0; t < 20; ++t) o.Step(inputs);  // saturated from tick 10 on
+    std::vector<std::uint64_t> before(5);
+    for (int m = 0; m < 5; ++m) before[static_cast<std::size_t>(m)] = o.state(m).rule_activity[0];
+    bool off_by_ulps = false;
+    for (int t = 0; t < 50; ++t) {
+      o.Step(inputs);
+      for (int m = 0; m < 5; ++m) off_by_ulps = off_by_ulps || o.state(m).hormones[0] != 1.0;
+    }
+    diverging += off_by_ulps ? 1 : 0;
+    for (int m = 0; m < 5; ++m) {
+      INFO("D = " << k * 0.001 << ", module " << m);
+      CHECK(o.state(m).rule_activity[0] == before[static_cast<std::size_t>(m)]);
+    }
+  }
+  CHECK(diverging > 0);  // the rounding this guards against does happen
+}

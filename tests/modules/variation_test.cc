@@ -1,8 +1,12 @@
 // Properties of initialisation, mutation and crossover over many random genomes.
 #include "modules/core/variation.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <map>
 #include <set>
+#include <string>
+#include <vector>
 
 using namespace ahhs::modules;
 
@@ -136,6 +140,132 @@ TEST_CASE("AHHS2 mutation is a weight shift with probability 7/15, bounded by m"
     }
   }
   CHECK(shifts / double(rule_mutations) == Approx(7.0 / 15).margin(0.015));
+}
+
+namespace {
+// Absolute change of each field over many single mutations of one gene, from the same parent:
+// field name -> the changes seen (floating indices measured around the circle).
+std::map<std::string, std::vector<double>> StepSizes(const Genome& parent, MutationProfile profile,
+                                                     std::uint64_t seed) {
+  std::map<std::string, std::vector<double>> steps;
+  const Shape s = parent.shape();
+  auto note = [&](const char* name, double a, double b, int wrap = 0) {
+    if (a == b) return;
+    double d = std::fabs(a - b);
+    if (wrap > 0) d = std::min(d, wrap - d);
+    steps[name].push_back(d);
+  };
+  Rng rng(seed);
+  MutationParams params;
+  params.profile = profile;
+  for (int k = 0; k < 60000; ++k) {
+    Genome m = parent;
+    MutateOneGene(&m, params, rng);
+    const auto &h0 = parent.hormones[0], &h1 = m.hormones[0];
+    note("alpha", h0.alpha, h1.alpha);
+    note("mu", h0.mu, h1.mu);
+    note("diffusion", h0.diffusion, h1.diffusion);
+    if (parent.variant == Variant::kAhhs2) {
+      const auto &a = parent.ahhs2_rules[0], &b = m.ahhs2_rules[0];
+      note("zeta", a.zeta, b.zeta);
+      note("eta", a.eta, b.eta);
+      note("lambda", a.lambda, b.lambda);
+      note("kappa", a.kappa, b.kappa);
+      note("sensor", a.sensor, b.sensor, s.sensors);
+      note("input", a.input, b.input, s.hormones);
+      note("output", a.output, b.output, s.hormones);
+      note("actuator", a.actuator, b.actuator, s.actuators);
+      double moved = 0;
+      for (std::size_t p = 0; p < 5; ++p) moved += std::fabs(a.weights[p] - b.weights[p]);
+      if (moved > 1e-12) steps["weight shift"].push_back(moved / 2);
+    } else {
+      const auto &a = parent.ahhs1_rules[0], &b = m.ahhs1_rules[0];
+      note("tau", a.tau, b.tau);
+      note("lambda", a.lambda, b.lambda);
+      note("kappa", a.kappa, b.kappa);
+    }
+  }
+  return steps;
+}
+
+// A parent whose fields sit far from their clamps, so every step shows whole.
+Genome CentredParent(Variant variant) {
+  Rng rng(11);
+  Genome g = RandomGenome({variant, 4, 1, 10, 4}, rng);
+  g.hormones[0] = {0.05, 0.5, 0.5};
+  if (variant == Variant::kAhhs2) {
+    auto& r = g.ahhs2_rules[0];
+    r.weights = {0.2, 0.2, 0.2, 0.2, 0.2};
+    r.zeta = 0;
+    r.eta = 0.25;
+    r.lambda = 0;
+    r.kappa = 0;
+    r.sensor = 5.5;
+    r.input = r.output = r.actuator = 2.5;
+  } else {
+    auto& r = g.ahhs1_rules[0];
+    r.tau = 0.5;
+    r.lambda = 0;
+    r.kappa = 0;
+  }
+  return g;
+}
+
+double Mean(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v) sum += x;
+  return sum / static_cast<double>(v.size());
+}
+}  // namespace
+
+TEST_CASE("paper mutation profile: every real field of both variants moves by U(0, 0.1)",
+          "[variation]") {
+  // The paper: "a maximal, absolute change of range 0.1", for every field, AHHS2 floating
+  // indices included. Steps are uniform on (0, 0.1]: largest near 0.1, mean near 0.05.
+  for (Variant v : {Variant::kAhhs2, Variant::kAhhs1}) {
+    const auto steps = StepSizes(CentredParent(v), MutationProfile::kPaper, 21);
+    const std::size_t fields = v == Variant::kAhhs2 ? 12 : 6;
+    CHECK(steps.size() == fields);
+    for (const auto& [name, d] : steps) {
+      INFO(VariantName(v) << " " << name << ": " << d.size() << " steps, mean " << Mean(d));
+      REQUIRE(d.size() > 500);
+      CHECK(*std::max_element(d.begin(), d.end()) <= 0.1 + 1e-12);
+      if (name == "alpha") continue;  // its range is [0, 0.1]: half the steps are clamped
+      CHECK(*std::max_element(d.begin(), d.end()) > 0.099);
+      CHECK(Mean(d) == Approx(0.05).margin(0.004));
+    }
+  }
+}
+
+TEST_CASE("fine-doses mutation profile: AHHS2 doses by U(0, 0.002), indices by U(0, 1)",
+          "[variation]") {
+  // The first briefing's operator, kept as a named profile; AHHS1 and hormones as in paper.
+  const auto steps = StepSizes(CentredParent(Variant::kAhhs2), MutationProfile::kFineDoses, 22);
+  for (const auto& [name, d] : steps) {
+    INFO(name << ": " << d.size() << " steps, mean " << Mean(d));
+    REQUIRE(d.size() > 500);
+    const double largest = *std::max_element(d.begin(), d.end());
+    if (name == "lambda" || name == "kappa") {
+      CHECK(largest <= 0.002 + 1e-15);
+      CHECK(Mean(d) == Approx(0.001).margin(0.0001));
+    } else if (name == "sensor" || name == "input" || name == "output" || name == "actuator") {
+      CHECK(largest <= 1.0 + 1e-12);
+      CHECK(largest > 0.99);
+      CHECK(Mean(d) == Approx(0.5).margin(0.04));
+    } else {
+      CHECK(largest <= 0.1 + 1e-12);
+      if (name != "alpha") CHECK(Mean(d) == Approx(0.05).margin(0.004));
+    }
+  }
+  const auto ahhs1 = StepSizes(CentredParent(Variant::kAhhs1), MutationProfile::kFineDoses, 23);
+  const auto ahhs1_paper = StepSizes(CentredParent(Variant::kAhhs1), MutationProfile::kPaper, 23);
+  CHECK(ahhs1 == ahhs1_paper);  // AHHS1 is the same under both profiles, draw for draw
+}
+
+TEST_CASE("mutation profiles have names", "[variation]") {
+  for (MutationProfile p : {MutationProfile::kPaper, MutationProfile::kFineDoses})
+    CHECK(ParseMutationProfile(MutationProfileName(p)) == p);
+  CHECK_THROWS_AS(ParseMutationProfile("coarse"), std::invalid_argument);
 }
 
 TEST_CASE("AHHS1 mutation can switch the rule type and keeps indices in range", "[variation]") {

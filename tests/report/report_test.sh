@@ -12,8 +12,8 @@ fail() { echo "FAIL: $*"; exit 1; }
 E="$bin/ahhs-evolve"
 common="--population 8 --generations 4 --lcm-url $url --workers 2"
 for seed in 1 2 3; do
-  $E --scenario pendulum --variant ahhs2 --hormones 6 --rules 8 --duration 15 --seed $seed $common --out $tmp/a2-$seed >/dev/null 2>&1 || fail "run a2-$seed"
-  $E --scenario pendulum --variant ahhs1 --hormones 6 --rules 12 --duration 15 --seed $seed $common --out $tmp/a1-$seed >/dev/null 2>&1 || fail "run a1-$seed"
+  $E --scenario pendulum --variant ahhs2 --hormones 6 --rules 8 --duration 5.25 --seed $seed $common --out $tmp/a2-$seed >/dev/null 2>&1 || fail "run a2-$seed"
+  $E --scenario pendulum --variant ahhs1 --hormones 6 --rules 12 --duration 5.25 --seed $seed $common --out $tmp/a1-$seed >/dev/null 2>&1 || fail "run a1-$seed"
 done
 $E --scenario gait --hormones 3 --rules 8 --duration 3 --seed 1 $common --out $tmp/gait >/dev/null 2>&1 || fail "gait run"
 

@@ -1,7 +1,10 @@
 #include "sim/core/gait.h"
 
 #include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
 #include <vector>
 
 #include "sim/core/drive.h"
@@ -37,6 +40,93 @@ TEST_CASE("gait: with zero drive the chain stays put", "[sim][gait]") {
     INFO(JointsName(j));
     CHECK(g.tick() == 1200);
     CHECK(g.Fitness() < 0.02);
+  }
+}
+
+namespace {
+// The constant commands of the no-creep check: every module at the same value, -1 to 1 in
+// steps of 0.1, then 200 random vectors in [-1, 1]^5.
+std::vector<std::array<double, 5>> ConstantCommands() {
+  std::vector<std::array<double, 5>> commands;
+  for (int i = -10; i <= 10; ++i) {
+    std::array<double, 5> c{};
+    c.fill(i / 10.0);
+    commands.push_back(c);
+  }
+  std::mt19937_64 rng(2026);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  for (int k = 0; k < 200; ++k) {
+    std::array<double, 5> c{};
+    for (double& v : c) v = uniform(rng);
+    commands.push_back(c);
+  }
+  return commands;
+}
+
+struct HeldCommand {
+  double drift;          // centroid displacement from t = 5 s to t = 60 s, m
+  double steadiest_gap;  // over hinges that reached their target: largest angle std after 10 s
+  double unreached_std;  // over hinges that did not: largest angle std after 10 s
+};
+
+HeldCommand HoldCommand(Joints joints, const std::array<double, 5>& command) {
+  GaitScenario g(Gait(joints));
+  g.Reset(1);
+  for (int m = 0; m < 5; ++m) g.SetActuators(m, &command[static_cast<std::size_t>(m)]);
+  std::array<double, 3> at5{};
+  std::array<double, 5> sum{}, sum2{};
+  int n = 0;
+  while (true) {
+    const StepStatus status = g.Step();
+    if (g.tick() == 100) at5 = g.Centroid();
+    if (g.tick() >= 200) {
+      for (std::size_t m = 0; m < 5; ++m) {
+        const double a = g.HingeAngle(static_cast<int>(m));
+        sum[m] += a;
+        sum2[m] += a * a;
+      }
+      ++n;
+    }
+    if (status != StepStatus::kRunning) break;
+  }
+  const auto at60 = g.Centroid();
+  HeldCommand h{std::hypot(at60[0] - at5[0], at60[1] - at5[1]), 0, 0};
+  for (std::size_t m = 0; m < 5; ++m) {
+    const double mean = sum[m] / n;
+    const double sd = std::sqrt(std::max(0.0, sum2[m] / n - mean * mean));
+    const bool reached = std::fabs(mean - M_PI / 2 * command[m]) < 0.05;
+    (reached ? h.steadiest_gap : h.unreached_std) =
+        std::max(reached ? h.steadiest_gap : h.unreached_std, sd);
+  }
+  return h;
+}
+}  // namespace
+
+TEST_CASE("gait: a constant command does not move the organism", "[sim][gait]") {
+  // Locomotion from a command that never changes would be a simulator artifact (it was: servo
+  // chatter and contact creep under the iterative solver carried a chain up to 0.9 m). For
+  // both dockings and 221 constant vectors the centroid moves at most 2 cm between t = 5 s and
+  // t = 60 s.
+  const auto commands = ConstantCommands();
+  for (Joints j : {Joints::kDamped, Joints::kFixed}) {
+    double worst_drift = 0;
+    int unsettled = 0;
+    for (const auto& c : commands) {
+      const HeldCommand h = HoldCommand(j, c);
+      INFO(JointsName(j) << " command " << c[0] << " " << c[1] << " " << c[2] << " " << c[3] << " "
+                         << c[4] << ": drift " << h.drift << " m");
+      CHECK(h.drift <= 0.02);
+      worst_drift = std::max(worst_drift, h.drift);
+      if (std::max(h.steadiest_gap, h.unreached_std) >= 0.01) ++unsettled;
+    }
+    // Settling (docs/scenarios.md): every hinge should hold still after 10 s (angle std below
+    // 0.01 rad), resting where contact or gravity keeps it from its target. Not yet true for
+    // every vector: some chains rock in place without going anywhere. These bounds are the
+    // measured counts, so that it can only get better.
+    const int allowed = j == Joints::kDamped ? 2 : 35;
+    WARN(JointsName(j) << ": largest drift " << worst_drift << " m; " << unsettled << " of "
+                       << commands.size() << " vectors leave a hinge rocking (std >= 0.01 rad)");
+    CHECK(unsettled <= allowed);
   }
 }
 

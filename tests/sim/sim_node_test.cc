@@ -17,6 +17,8 @@ using namespace std::chrono_literals;
 
 namespace {
 
+const double kPeriod = sim::PendulumConstants{}.control_period;  // s per pendulum tick
+
 sim_control_t Control(std::int8_t command, std::int64_t episode) {
   sim_control_t m{};
   m.command = command;
@@ -78,8 +80,8 @@ TEST_CASE("lockstep over the bus equals the same policy run in-process, bit for 
       bus, "AHHS/SIM/STATE", [&](const std::string&, const sim_state_t& m) {
         ++states;
         CHECK(m.sim_time >= last_state_time);
-        // on a tick boundary (0.05 s)
-        CHECK(std::fabs(m.sim_time / 0.05 - std::round(m.sim_time / 0.05)) < 1e-6);
+        // on a tick boundary
+        CHECK(std::fabs(m.sim_time / kPeriod - std::round(m.sim_time / kPeriod)) < 1e-6);
         last_state_time = m.sim_time;
         REQUIRE(m.num_bodies == 2);
         CHECK(m.module[0] == 0);
@@ -104,7 +106,7 @@ TEST_CASE("lockstep over the bus equals the same policy run in-process, bit for 
 
   auto reset = Control(sim_control_t::RESET, 7);
   reset.seed = 99;
-  reset.duration = 20.0;  // 400 ticks
+  reset.duration = 400 * kPeriod;
   bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);
   node.Poll(10ms);
   REQUIRE(node.phase() == sim::SimNode::Phase::kReady);
@@ -118,7 +120,7 @@ TEST_CASE("lockstep over the bus equals the same policy run in-process, bit for 
   // The same policy, in-process.
   sim::ScenarioConfig config;
   config.kind = sim::ScenarioKind::kPendulum;
-  config.duration = 20.0;
+  config.duration = 400 * kPeriod;
   sim::PendulumScenario direct(config);
   direct.Reset(99);
   double s[10], a[2];
@@ -151,7 +153,7 @@ TEST_CASE("bad commands are counted and dropped, a silent module times out", "[s
   FakeModules modules(bus, 3);
   modules.silent = {1};
   auto reset = Control(sim_control_t::RESET, 3);
-  reset.duration = 1.0;  // 20 ticks
+  reset.duration = 20 * kPeriod;
   bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);
   node.Poll(1ms);
   bus::PublishTyped(bus, "AHHS/SIM/CONTROL", Control(sim_control_t::START, 3));
@@ -181,7 +183,7 @@ TEST_CASE("bad commands are counted and dropped, a silent module times out", "[s
   // actuator stayed 0 throughout.
   sim::ScenarioConfig config;
   config.kind = sim::ScenarioKind::kPendulum;
-  config.duration = 1.0;
+  config.duration = 20 * kPeriod;
   sim::PendulumScenario direct(config);
   direct.Reset(0);
   double s[10], a[2] = {0, 0};
@@ -248,7 +250,7 @@ TEST_CASE("a late copy of RESET does not restart the episode it belongs to", "[s
   FakeModules modules(bus, 3);
   auto reset = Control(sim_control_t::RESET, 3);
   reset.seed = 5;
-  reset.duration = 1.0;  // 20 ticks
+  reset.duration = 20 * kPeriod;
   bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);
   node.Poll(1ms);
   bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);  // a repeat before START: answered again
@@ -282,7 +284,7 @@ TEST_CASE("real time: the latest command is used whatever tick it answered", "[s
                                    [&](const std::string&, const sim_clock_t&) { ++clocks; });
   auto reset = Control(sim_control_t::RESET, 9);
   reset.clock_mode = sim_control_t::MODE_REALTIME;
-  reset.duration = 0.25;  // 5 ticks, 0.25 s of wall time
+  reset.duration = 20 * kPeriod;  // 0.35 s of wall time
   bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);
   node.Poll(1ms);
   bus::PublishTyped(bus, "AHHS/SIM/CONTROL", Control(sim_control_t::START, 9));
@@ -301,8 +303,8 @@ TEST_CASE("real time: the latest command is used whatever tick it answered", "[s
   const auto& p = static_cast<const sim::PendulumScenario&>(*node.scenario());
   CHECK(p.state().x > 0.05);  // pushed right all along
   bus.Handle(0us);
-  // Real time: STATE at 40 Hz for viewers (10 in 0.25 s, plus reset and final); the clock at
+  // Real time: STATE at 40 Hz for viewers (14 in 0.35 s, plus reset and final); the clock at
   // RESET, every tick, and three times at the end.
-  CHECK(states == 1 + 10 + 1);
-  CHECK(clocks == 1 + 5 + 3);
+  CHECK(states == 1 + 14 + 1);
+  CHECK(clocks == 1 + 20 + 3);
 }

@@ -136,9 +136,14 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 100000));
   app.add_option("--mutants-csv", mutants_csv, "where --mutants writes its results");
   app.add_option("--mutant-seed", mutant_seed, "seed of the mutations")->capture_default_str();
+  std::string mutation_profile;
+  app.add_option("--mutation-profile", mutation_profile,
+                 "operator of the mutants: paper or fine-doses (default: the run's, else paper)")
+      ->check(CLI::IsMember({"paper", "fine-doses"}));
   CLI11_PARSE(app, argc, argv);
 
   al::EpisodeSpec spec;
+  am::MutationParams mutation;  // of the mutants: the run's, or the paper's
   std::optional<double> stored_fitness;
   std::string what;
   try {
@@ -165,6 +170,7 @@ int main(int argc, char** argv) {
         record = store->LoadIndividual(generation, individual);
       }
       spec.config = config.scenario;
+      mutation = config.ga.mutation;
       spec.genome = record.genome;
       spec.seed = app.count("--seed") ? seed : static_cast<std::int64_t>(record.eval_seed);
       if (!app.count("--seed")) stored_fitness = record.evaluation.fitness;
@@ -184,6 +190,7 @@ int main(int argc, char** argv) {
       spec.seed = seed;
       what = genome_file;
     }
+    if (!mutation_profile.empty()) mutation.profile = am::ParseMutationProfile(mutation_profile);
   } catch (const std::exception& e) {
     std::cerr << "ahhs-replay: " << e.what() << '\n';
     return 1;
@@ -321,7 +328,7 @@ int main(int argc, char** argv) {
       am::Rng rng(mutant_seed);
       for (int k = 0; k < mutants; ++k) {
         al::EpisodeSpec mutant = spec;
-        am::MutateOneGene(&mutant.genome, am::MutationParams{}, rng);
+        am::MutateOneGene(&mutant.genome, mutation, rng);
         const al::EpisodeResult r = al::RunDirectEpisode(mutant);
         out.out() << k << ',' << Exact(r.ok ? r.fitness : 0) << ',' << am::GenomeHash(mutant.genome)
                   << '\n';

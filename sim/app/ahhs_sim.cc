@@ -10,6 +10,7 @@
 
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
+#include "sim/core/behaviour.h"
 #include "sim/core/drive.h"
 #include "sim/core/scenario.h"
 #include "sim/node/sim_node.h"
@@ -131,14 +132,19 @@ int main(int argc, char** argv) {
                                   as::ScenarioName(config.kind) + " task");
     sim->Reset(seed);
     std::vector<double> command(static_cast<std::size_t>(sim->num_actuators()));
+    std::vector<double> commands;  // every compartment's, for the behaviour summary
+    as::BehaviourSummary behaviour;
     const auto t0 = std::chrono::steady_clock::now();
     as::StepStatus status = as::StepStatus::kRunning;
     while (status == as::StepStatus::kRunning) {
+      commands.clear();
       for (int c = 0; c < sim->num_compartments(); ++c) {
         as::DriveCommand(drive_kind, *sim, c, command.data());
         sim->SetActuators(c, command.data());
+        commands.insert(commands.end(), command.begin(), command.end());
       }
       status = sim->Step();
+      if (status != as::StepStatus::kFailed) behaviour.Observe(*sim, commands);
       if (verbose && sim->tick() % static_cast<std::int64_t>(1.0 / sim->control_period()) == 0)
         std::printf("t %7.2f s  fitness %.6f  cost %.6f\n", sim->sim_time(), sim->Fitness(),
                     sim->Cost());
@@ -154,6 +160,7 @@ int main(int argc, char** argv) {
         "time)\n",
         as::ScenarioName(config.kind), drive.c_str(), static_cast<unsigned long long>(seed),
         static_cast<long long>(sim->tick()), sim->sim_time(), wall, sim->sim_time() / wall);
+    std::printf("behaviour: %s\n", behaviour.Describe().c_str());
     std::printf("cost: %.17g\n", sim->Cost());
     std::printf("fitness: %.17g\n", sim->Fitness());
   } catch (const std::exception& e) {

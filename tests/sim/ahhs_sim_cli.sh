@@ -25,6 +25,15 @@ expect_error "--duration must be a positive" "$sim" --drive zero --duration 0
 expect_error "at least 2 modules" "$sim" --drive zero --modules 1
 expect_error "unknown joints" "$sim" --drive zero --joints wobbly
 expect_error "unknown drive" "$sim" --drive dance
+expect_error "--drive swingup is not defined for the gait task" "$sim" --drive swingup
+expect_error "--drive inchworm is not defined for the pendulum task" "$sim" --scenario pendulum --drive inchworm
+# The designed swing-up turns the pendulum over the top; the behaviour line says so.
+out=$("$sim" --scenario pendulum --drive swingup --seed 1) || fail "swing-up run"
+[[ $out =~ behaviour:\ bob\ above\ the\ pivot\ in\ [0-9.]+\ %\ of\ ticks,\ ([0-9]+)\ passes\ over\ the\ top ]] ||
+  fail "no pendulum behaviour line: $out"
+(( BASH_REMATCH[1] >= 10 )) || fail "the swing-up passed the top only ${BASH_REMATCH[1]} times"
+out=$("$sim" --scenario gait --drive zero) || fail "zero gait run"
+grep -q "^behaviour: commands constant after 5 s; inside" <<<"$out" || fail "gait behaviour line: $out"
 expect_error "--modules" "$sim" --drive zero --modules five
 expect_error "--seed" "$sim" --drive zero --seed -x
 expect_error "cannot open LCM bus" "$sim" --lcm-url "nosuch://x"

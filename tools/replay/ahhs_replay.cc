@@ -25,6 +25,7 @@
 #include "evolver/store/run_store.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/variation.h"
+#include "sim/core/behaviour.h"
 #include "sim/node/sim_codec.h"
 #include "tools/launch/episode_runner.h"
 
@@ -289,16 +290,22 @@ int main(int argc, char** argv) {
                    ahhs::sim::StateMessage(bodies, spec.episode, t.tick + 1, time));
       }
     };
-    const bool tracing = log || csv || !rules_csv.empty();
     std::vector<std::vector<std::uint64_t>> final_activity;
+    ahhs::sim::BehaviourSummary behaviour;
+    std::vector<double> commands;
     al::DirectObserver with_rules = [&](const al::DirectTick& t) {
+      commands.clear();
+      for (int c = 0; c < t.organism->size(); ++c) {
+        const auto& a = t.organism->state(c).actuators;
+        commands.insert(commands.end(), a.data(), a.data() + a.size());
+      }
+      behaviour.Observe(*t.scenario, commands);
       if (log || csv) observer(t);
       final_activity.clear();
       for (int c = 0; c < t.organism->size(); ++c)
         final_activity.push_back(t.organism->state(c).rule_activity);
     };
-    const al::EpisodeResult result =
-        al::RunDirectEpisode(spec, tracing ? with_rules : al::DirectObserver{});
+    const al::EpisodeResult result = al::RunDirectEpisode(spec, with_rules);
     if (log) {
       ahhs::fitness_t f{};
       f.episode = spec.episode;
@@ -341,6 +348,7 @@ int main(int argc, char** argv) {
       std::printf("the episode failed: %s (a failed episode scores 0 in a run)\n",
                   result.error.c_str());
     }
+    if (result.ok) std::printf("behaviour: %s\n", behaviour.Describe().c_str());
     const double fitness = result.ok ? result.fitness : 0;
     if (stored_fitness) {
       if (*stored_fitness == fitness) {

@@ -15,6 +15,13 @@ void BehaviourSummary::Observe(const Scenario& scenario, const std::vector<doubl
   if (!prev_commands_.empty() && time > kSettleTime && commands != prev_commands_)
     last_change_ = time;
   prev_commands_ = commands;
+  if (time > kSettleTime) {
+    if (low_.empty()) low_ = high_ = commands;
+    for (std::size_t i = 0; i < commands.size() && i < low_.size(); ++i) {
+      low_[i] = std::min(low_[i], commands[i]);
+      high_[i] = std::max(high_[i], commands[i]);
+    }
+  }
 
   if (const auto* p = dynamic_cast<const PendulumScenario*>(&scenario)) {
     pendulum_ = true;
@@ -45,6 +52,12 @@ void BehaviourSummary::Observe(const Scenario& scenario, const std::vector<doubl
   }
 }
 
+double BehaviourSummary::command_swing() const {
+  double swing = 0;
+  for (std::size_t i = 0; i < low_.size(); ++i) swing = std::max(swing, high_[i] - low_[i]);
+  return swing;
+}
+
 std::string BehaviourSummary::WallClass() const {
   if (halves_ == 0) return "";
   if (halves_over_ == halves_) return "over";
@@ -71,9 +84,10 @@ std::string BehaviourSummary::Describe() const {
                   kSettleTime, WallClass().c_str(), halves_over_, halves_);
   else
     std::snprintf(line, sizeof line,
-                  "commands still changing (last change at %.2f s); %s (%d of %d module halves "
-                  "beyond the wall)",
-                  last_change_, WallClass().c_str(), halves_over_, halves_);
+                  "commands still changing (last change at %.2f s, a command spans up to %.3g "
+                  "after %.0f s); %s (%d of %d module halves beyond the wall)",
+                  last_change_, command_swing(), kSettleTime, WallClass().c_str(), halves_over_,
+                  halves_);
   return line;
 }
 

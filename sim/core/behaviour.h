@@ -29,6 +29,8 @@ class BehaviourSummary {
   // Gait. Simulated time of the last tick after kSettleTime whose commands differed from the
   // tick before; -1 if they never changed after kSettleTime (a constant command).
   double last_command_change() const { return last_change_; }
+  // Largest range (max - min) of any one command value over the ticks after kSettleTime.
+  double command_swing() const;
   // Module halves beyond the wall's outer face at the end, and all halves.
   int halves_over_wall() const { return halves_over_; }
   int halves() const { return halves_; }
@@ -47,6 +49,7 @@ class BehaviourSummary {
   bool have_prev_ = false;
   std::vector<double> prev_commands_;
   double last_change_ = -1;
+  std::vector<double> low_, high_;  // per command value, after kSettleTime
   int halves_over_ = 0, halves_ = 0, halves_near_ = 0;
   std::vector<BodyState> bodies_;
 };

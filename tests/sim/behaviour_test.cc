@@ -65,6 +65,8 @@ TEST_CASE("behaviour: a gait's commands and where it ends relative to the wall",
     g.Reset(1);
     const BehaviourSummary wave = RunWith(g, DriveKind::kWave);
     CHECK(wave.last_command_change() > 59);
+    CHECK(wave.command_swing() == Approx(1.6).margin(0.01));  // 0.8 sin(...)
+    CHECK(still.command_swing() == 0.0);
     CHECK(wave.WallClass() == "over");  // the wave crawls over the wall (docs/scenarios.md)
     g.Reset(1);
     const BehaviourSummary inch = RunWith(g, DriveKind::kInchworm);

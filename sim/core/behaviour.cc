@@ -40,6 +40,14 @@ void BehaviourSummary::Observe(const Scenario& scenario, const std::vector<doubl
   }
   if (const auto* g = dynamic_cast<const GaitScenario*>(&scenario)) {
     const GaitConstants& k = g->constants();
+    const auto c = g->Centroid();
+    if (!have_start_) {
+      start_[0] = c[0];
+      start_[1] = c[1];
+      have_start_ = true;
+    }
+    moved_[0] = c[0] - start_[0];
+    moved_[1] = c[1] - start_[1];
     g->Bodies(&bodies_);
     halves_ = halves_over_ = halves_near_ = 0;
     for (const BodyState& b : bodies_) {
@@ -78,6 +86,9 @@ std::string BehaviourSummary::Describe() const {
     return line;
   }
   if (halves_ == 0) return "";
+  char moved[96];
+  std::snprintf(moved, sizeof moved, "; moved %.2f m (x %+.2f, y %+.2f)",
+                std::hypot(moved_[0], moved_[1]), moved_[0], moved_[1]);
   if (last_change_ < 0)
     std::snprintf(line, sizeof line,
                   "commands constant after %.0f s; %s (%d of %d module halves beyond the wall)",
@@ -88,7 +99,7 @@ std::string BehaviourSummary::Describe() const {
                   "after %.0f s); %s (%d of %d module halves beyond the wall)",
                   last_change_, command_swing(), kSettleTime, WallClass().c_str(), halves_over_,
                   halves_);
-  return line;
+  return line + std::string(moved);
 }
 
 }  // namespace ahhs::sim

@@ -34,6 +34,9 @@ class BehaviourSummary {
   // Module halves beyond the wall's outer face at the end, and all halves.
   int halves_over_wall() const { return halves_over_; }
   int halves() const { return halves_; }
+  // Centroid displacement from the first observed tick to the last, x and y, m.
+  double moved_x() const { return moved_[0]; }
+  double moved_y() const { return moved_[1]; }
   // "inside", "at the wall", "half over", "over" (all halves beyond the wall).
   std::string WallClass() const;
 
@@ -51,6 +54,8 @@ class BehaviourSummary {
   double last_change_ = -1;
   std::vector<double> low_, high_;  // per command value, after kSettleTime
   int halves_over_ = 0, halves_ = 0, halves_near_ = 0;
+  bool have_start_ = false;
+  double start_[2] = {0, 0}, moved_[2] = {0, 0};
   std::vector<BodyState> bodies_;
 };
 

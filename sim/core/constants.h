@@ -56,6 +56,10 @@ struct GaitConstants {
   // N m. Holding the module's own half plus two modules straight out needs 1.53 N m, plus three
   // modules 3.0 N m: 2.2 N m lifts two neighbours, not three.
   double servo_max_torque = 2.2;
+  // N m, Coulomb friction in the servo's gearbox: back-driving a hinge takes at least this much.
+  // Without it a servo stalled short of its target (held back by gravity and contact) kept its
+  // chain rocking in place (docs/scenarios.md).
+  double servo_gear_friction = 0.1;
   double friction = 0.8;  // Coulomb friction coefficient, every contact
   double contact_erp = 0.2, contact_cfm = 1e-5;
   double world_erp = 0.2, world_cfm = 1e-9;  // rigid ("fixed") docking uses these

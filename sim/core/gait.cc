@@ -203,6 +203,17 @@ void GaitScenario::Build() {
     dJointSetHingeParam(m.hinge, dParamHiStop, k_.hinge_range);
     dJointSetHingeParam(m.hinge, dParamFMax, k_.servo_max_torque);
     dJointSetHingeParam(m.hinge, dParamVel, 0);
+    if (k_.servo_gear_friction > 0) {
+      // Gear friction: an angular motor about the hinge axis (fixed in the front half) that
+      // holds zero relative speed with at most the friction torque. Back-driving the hinge takes
+      // that much torque; the servo overcomes it when it moves.
+      dJointID gear = dJointCreateAMotor(world_, nullptr);
+      dJointAttach(gear, m.front.body, m.back.body);
+      dJointSetAMotorNumAxes(gear, 1);
+      dJointSetAMotorAxis(gear, 0, 1, 0, 1, 0);
+      dJointSetAMotorParam(gear, dParamVel, 0);
+      dJointSetAMotorParam(gear, dParamFMax, k_.servo_gear_friction);
+    }
   }
   // Damped docking: module i's back half to module i+1's front half by a soft fixed joint.
   if (!rigid) {

@@ -21,6 +21,7 @@
 #include "evolver/farm/arena_evaluator.h"
 #include "evolver/farm/farm_evaluator.h"
 #include "evolver/store/run_store.h"
+#include "modules/core/random.h"
 #include "tools/launch/episode_runner.h"
 #include "tools/launch/process_arena.h"
 
@@ -169,6 +170,7 @@ int main(int argc, char** argv) {
   app.add_option("--crossover-rate", crossover_rate, "two-point crossover rate")
       ->capture_default_str();
   app.add_option("--seed", seed, "run seed (every random draw of the run derives from it)")
+      ->check(ahhs::modules::SeedTextError)
       ->capture_default_str();
   auto* out_opt = app.add_option("--out", out_dir, "run directory (default: runs/<time>-<task>)");
   auto* resume_opt =
@@ -379,8 +381,7 @@ int main(int argc, char** argv) {
       std::snprintf(d, sizeof d, "%.17g", config.scenario.duration);
       replay += std::string(" --duration ") + d;
     }
-    replay += " --genome " + dir + "/best.json --seed " +
-              std::to_string(static_cast<std::int64_t>(best.eval_seed));
+    replay += " --genome " + dir + "/best.json --seed " + std::to_string(best.eval_seed);
     std::printf("done: %d generations in %s\n", config.ga.generations, dir.c_str());
     std::printf("best fitness: %.17g (generation %d, individual %d)\n", best.evaluation.fitness,
                 best.generation, best.index);

@@ -37,7 +37,7 @@ EvalOutcome ArenaEvaluator::Evaluate(const EvalJob& job) {
   launch::EpisodeSpec spec;
   spec.config = job.config;
   spec.genome = job.genome;
-  spec.seed = static_cast<std::int64_t>(job.seed);
+  spec.seed = job.seed;
   // Episode ids only need to be unique on the arena's bus.
   spec.episode = static_cast<std::int64_t>(getpid()) * 1000000 + ++episodes_;
   spec.arena = arena_name_;

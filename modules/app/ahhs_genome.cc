@@ -9,6 +9,7 @@
 #include "modules/app/sensor_csv.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/organism.h"
+#include "modules/core/random.h"
 #include "modules/core/variation.h"
 
 namespace am = ahhs::modules;
@@ -159,14 +160,18 @@ int main(int argc, char** argv) {
   random->add_option("--actuators", shape.actuators, "actuator slots per compartment")
       ->check(CLI::Range(1, am::Ranges::kMaxSlots))
       ->capture_default_str();
-  random->add_option("--seed", seed, "random seed (recorded in the genome's meta)")->required();
+  random->add_option("--seed", seed, "random seed (recorded in the genome's meta)")
+      ->check(ahhs::modules::SeedTextError)
+      ->required();
 
   auto* mutate =
       app.add_subcommand("mutate", "Print mutants of a genome (a JSON array when --count > 1)");
   std::string file, file_b;
   int count = 1;
   mutate->add_option("FILE", file, "genome file")->required()->check(CLI::ExistingFile);
-  mutate->add_option("--seed", seed, "random seed")->required();
+  mutate->add_option("--seed", seed, "random seed")
+      ->check(ahhs::modules::SeedTextError)
+      ->required();
   mutate->add_option("--count", count, "number of independent mutants")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
@@ -184,7 +189,9 @@ int main(int argc, char** argv) {
       "crossover", "Print the two children of a two-point crossover (JSON array)");
   crossover->add_option("A", file, "first parent")->required()->check(CLI::ExistingFile);
   crossover->add_option("B", file_b, "second parent")->required()->check(CLI::ExistingFile);
-  crossover->add_option("--seed", seed, "random seed")->required();
+  crossover->add_option("--seed", seed, "random seed")
+      ->check(ahhs::modules::SeedTextError)
+      ->required();
 
   auto* validate =
       app.add_subcommand("validate", "Exit 0 if FILE is a valid genome, else print why and exit 1");

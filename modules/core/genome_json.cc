@@ -196,13 +196,17 @@ Genome GenomeFromJson(const json& doc) {
   return g;
 }
 
-Genome ParseGenome(const std::string& text, const std::string& source) {
-  json doc;
+namespace {
+
+json ParseJsonText(const std::string& text, const std::string& source) {
   try {
-    doc = json::parse(text);
+    return json::parse(text);
   } catch (const json::parse_error& e) {
     throw GenomeFileError(source + ": not valid JSON (" + std::string(e.what()) + ")");
   }
+}
+
+Genome GenomeFromDocument(const json& doc, const std::string& source) {
   try {
     return GenomeFromJson(doc);
   } catch (const GenomeFileError& e) {
@@ -210,13 +214,33 @@ Genome ParseGenome(const std::string& text, const std::string& source) {
   }
 }
 
-Genome LoadGenomeFile(const std::string& path) {
+}  // namespace
+
+Genome ParseGenome(const std::string& text, const std::string& source) {
+  return GenomeFromDocument(ParseJsonText(text, source), source);
+}
+
+Genome LoadGenomeFile(const std::string& path) { return LoadGenomeFile(path, nullptr); }
+
+Genome LoadGenomeFile(const std::string& path, json* meta) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw GenomeFileError(path + ": cannot open");
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw GenomeFileError(path + ": read error");
-  return ParseGenome(text.str(), path);
+  const json doc = ParseJsonText(text.str(), path);
+  Genome g = GenomeFromDocument(doc, path);
+  if (meta != nullptr) *meta = doc.contains("meta") ? doc["meta"] : json(nullptr);
+  return g;
+}
+
+std::optional<std::uint64_t> StoredEvalSeed(const json& meta) {
+  if (!meta.is_object() || !meta.contains("eval_seed")) return std::nullopt;
+  const json& seed = meta["eval_seed"];
+  if (seed.is_number_unsigned()) return seed.get<std::uint64_t>();
+  if (seed.is_number_integer() && seed.get<std::int64_t>() >= 0)
+    return static_cast<std::uint64_t>(seed.get<std::int64_t>());
+  return std::nullopt;
 }
 
 void SaveGenomeFile(const std::string& path, const Genome& genome, const json& meta) {

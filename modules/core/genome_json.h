@@ -2,7 +2,9 @@
 // a complete, valid genome or throws GenomeFileError naming the offending field.
 #pragma once
 
+#include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -30,6 +32,12 @@ Genome ParseGenome(const std::string& text, const std::string& source);
 
 // Reads and validates a genome file. Throws GenomeFileError with the path in the message.
 Genome LoadGenomeFile(const std::string& path);
+// The same, and the file's "meta" object into *meta (null when the file has none).
+Genome LoadGenomeFile(const std::string& path, nlohmann::json* meta);
+
+// The evaluation seed a genome file stores (meta.eval_seed, written by ahhs-evolve for best.json
+// and best/gen-NNNN.json), if it has one: an unsigned 64-bit integer.
+std::optional<std::uint64_t> StoredEvalSeed(const nlohmann::json& meta);
 
 // Writes a genome file atomically (temporary file + rename): never half a file.
 void SaveGenomeFile(const std::string& path, const Genome& genome,

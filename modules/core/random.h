@@ -3,8 +3,10 @@
 // std::*_distribution classes are implementation-defined; std::mt19937_64's output is not).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
+#include <string>
 
 namespace ahhs::modules {
 
@@ -46,6 +48,20 @@ inline std::uint64_t DeriveSeed(std::uint64_t seed, std::initializer_list<std::u
   std::uint64_t h = mix(seed);
   for (std::uint64_t id : ids) h = mix(h ^ mix(id));
   return h;
+}
+
+// Seeds are unsigned 64-bit numbers end to end. For a command-line check: "" if `text` is a
+// whole number from 0 to 2^64-1 written in decimal digits, else a message (no sign, no clamping:
+// "-1" or "18446744073709551616" are refused, not wrapped or clamped).
+inline std::string SeedTextError(const std::string& text) {
+  static const std::string kMax = "18446744073709551615";
+  const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+  const std::string trimmed =
+      digits ? text.substr(std::min(text.find_first_not_of('0'), text.size() - 1)) : text;
+  if (digits &&
+      (trimmed.size() < kMax.size() || (trimmed.size() == kMax.size() && trimmed <= kMax)))
+    return "";
+  return "a seed is a whole number from 0 to 18446744073709551615, not '" + text + "'";
 }
 
 }  // namespace ahhs::modules

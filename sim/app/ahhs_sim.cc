@@ -10,6 +10,7 @@
 
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
+#include "modules/core/random.h"
 #include "sim/core/behaviour.h"
 #include "sim/core/drive.h"
 #include "sim/core/scenario.h"
@@ -100,7 +101,9 @@ int main(int argc, char** argv) {
       "standalone: built-in commands: zero, wave, swingup (pendulum) or inchworm (gait)");
   app.add_option("--joints", joints, "gait docking: damped or fixed")->capture_default_str();
   app.add_option("--modules", modules, "gait: modules in the chain (>= 2)")->capture_default_str();
-  app.add_option("--seed", seed, "episode seed")->capture_default_str();
+  app.add_option("--seed", seed, "episode seed")
+      ->check(ahhs::modules::SeedTextError)
+      ->capture_default_str();
   app.add_option("--duration", duration, "episode length, simulated seconds (default: the task's)");
   app.add_flag("-v,--verbose", verbose, "print the state once per simulated second");
   CLI11_PARSE(app, argc, argv);

@@ -87,6 +87,23 @@ sleep 0.5
 pgrep -f "arena INTR" && fail "orphan processes left after Ctrl-C"
 echo "interrupted: exit status $rc, no orphans"
 
+echo "== seeds are unsigned 64-bit numbers, never clamped"
+big=17941434774548605579 int64_max=9223372036854775807
+"$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 2 --seed $big --fused >$tmp/big.out || fail "seed above 2^63"
+"$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 2 --seed $int64_max --fused >$tmp/max.out || fail "seed 2^63-1"
+grep -q "seed $big," $tmp/big.out || fail "the seed printed is not the one given: $(cat $tmp/big.out)"
+[[ "$(tail -1 $tmp/big.out)" != "$(tail -1 $tmp/max.out)" ]] || fail "seed $big gave the fitness of $int64_max (clamped?)"
+"$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 2 --seed $big --lcm-url "$url" >$tmp/bigp.out 2>/dev/null ||
+  fail "seed above 2^63 in the process arena"
+[[ "$(tail -1 $tmp/big.out)" == "$(tail -1 $tmp/bigp.out)" ]] || fail "seed above 2^63: fused and process arenas differ"
+for bad in -1 18446744073709551616 x; do
+  if "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --seed $bad --fused >/dev/null 2>$tmp/bad.err; then
+    fail "--seed $bad accepted"
+  fi
+  grep -q -- "--seed" $tmp/bad.err || fail "--seed $bad: $(cat $tmp/bad.err)"
+done
+echo "seed $big: $(tail -1 $tmp/big.out) (seed $int64_max: $(tail -1 $tmp/max.out))"
+
 echo "== 5. 5 % of messages dropped (fault injection of the bus, in every process)"
 AHHS_FAULT_DROP=0.05 AHHS_FAULT_SEED=3 "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 10.5 \
   --lockstep-timeout-ms 20 --lcm-url "$url" >$tmp/drop.out 2>$tmp/drop.err || { cat $tmp/drop.err; fail "lossy run"; }

@@ -49,6 +49,18 @@ best=$(sed -n 's/^best fitness: \([^ ]*\) .*/\1/p' $tmp/out)
 "$bin/ahhs-launch" $replay --fused >$tmp/replay.out || fail "replay"
 [[ "$(tail -1 $tmp/replay.out)" == "fitness: $best" ]] || fail "replay gives $(tail -1 $tmp/replay.out), stored $best"
 echo "replayed best: $best"
+# Without --seed, ahhs-launch and ahhs-replay --genome use the evaluation seed best.json stores,
+# say so, and reproduce the stored fitness.
+"$bin/ahhs-launch" --scenario pendulum --duration 10 --genome $tmp/p-direct-1/best.json --fused >$tmp/noseed.out ||
+  fail "launch without --seed"
+grep -q "^seed [0-9]*: the evaluation seed stored in $tmp/p-direct-1/best.json" $tmp/noseed.out ||
+  fail "launch does not say which seed: $(cat $tmp/noseed.out)"
+[[ "$(tail -1 $tmp/noseed.out)" == "fitness: $best" ]] || fail "launch without --seed: $(tail -1 $tmp/noseed.out), stored $best"
+"$bin/ahhs-replay" --genome $tmp/p-direct-1/best.json --scenario pendulum --duration 10 >$tmp/noseed.out ||
+  fail "replay --genome without --seed"
+grep -q "with the evaluation seed it stores" $tmp/noseed.out && grep -q "reproduced exactly" $tmp/noseed.out ||
+  fail "replay --genome without --seed: $(cat $tmp/noseed.out)"
+[[ "$(tail -1 $tmp/noseed.out)" == "fitness: $best" ]] || fail "replay --genome without --seed: $(tail -1 $tmp/noseed.out)"
 for v in "2 direct" "2 fused" "1 processes"; do
   set -- $v
   $E $pend --out $tmp/p-$2-$1 --workers $1 --arena $2 >$tmp/out 2>&1 || { cat $tmp/out; fail "pendulum $v"; }

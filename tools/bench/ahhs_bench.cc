@@ -17,6 +17,7 @@
 
 #include "modules/core/genome_json.h"
 #include "modules/core/hormone_system.h"
+#include "modules/core/random.h"
 #include "modules/core/variation.h"
 #include "sim/core/drive.h"
 #include "sim/core/scenario.h"
@@ -161,7 +162,7 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   al::EpisodeSpec spec;
   spec.config = config;
   spec.genome = genome;
-  spec.seed = static_cast<std::int64_t>(seed);
+  spec.seed = seed;
   // The same episode's physics without controllers: the hinge commands the controllers gave,
   // recorded once from the loop without a bus, are replayed tick by tick.
   std::vector<std::vector<double>> commands;  // [tick][compartment * actuators + a]
@@ -344,7 +345,9 @@ int main(int argc, char** argv) {
   controller->add_option("--repeats", repeats, "repeats (the median is reported)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  controller->add_option("--seed", seed, "genome seed")->capture_default_str();
+  controller->add_option("--seed", seed, "genome seed")
+      ->check(ahhs::modules::SeedTextError)
+      ->capture_default_str();
   std::string only;
   controller->add_option("--only", only, "run only the cases whose name contains this text");
   auto* sim = app.add_subcommand("sim", "physics-only episodes with built-in drives");
@@ -352,7 +355,9 @@ int main(int argc, char** argv) {
   sim->add_option("--repeats", sim_repeats, "repeats (the median is reported)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  sim->add_option("--seed", seed, "first episode seed")->capture_default_str();
+  sim->add_option("--seed", seed, "first episode seed")
+      ->check(ahhs::modules::SeedTextError)
+      ->capture_default_str();
   int sim_seeds = 1;
   sim->add_option("--seeds", sim_seeds,
                   "seeds seed, seed+1, ... (the median over them is reported)")
@@ -363,7 +368,9 @@ int main(int argc, char** argv) {
   std::string arena_url = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
   arena->add_option("--lcm-url", arena_url, "URL for the multi-process arena")
       ->capture_default_str();
-  arena->add_option("--seed", seed, "genome and episode seed")->capture_default_str();
+  arena->add_option("--seed", seed, "genome and episode seed")
+      ->check(ahhs::modules::SeedTextError)
+      ->capture_default_str();
   int arena_repeats = 3;
   arena->add_option("--repeats", arena_repeats, "repeats of each (the median is reported)")
       ->check(CLI::Range(1, 100))

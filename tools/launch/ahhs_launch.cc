@@ -13,6 +13,7 @@
 #include "bus/lcm_bus.h"
 #include "bus/make_bus.h"
 #include "modules/core/genome_json.h"
+#include "modules/core/random.h"
 #include "tools/launch/episode_runner.h"
 #include "tools/launch/process_arena.h"
 
@@ -32,7 +33,7 @@ int main(int argc, char** argv) {
               logger = "ahhs-logger";
   int modules = 5;
   double duration = 0;
-  std::int64_t seed = 1;
+  std::uint64_t seed = 1;
   bool fused = false, realtime = false, verbose = false;
   int timeout_s = 3600;
   int lockstep_timeout_ms = 2000;
@@ -40,7 +41,10 @@ int main(int argc, char** argv) {
   app.add_option("--genome", genome_file, "genome file (docs/genome.md)")
       ->required()
       ->check(CLI::ExistingFile);
-  app.add_option("--seed", seed, "episode seed")->capture_default_str();
+  app.add_option("--seed", seed,
+                 "episode seed, 0 to 2^64-1 (default: the genome file's stored evaluation seed, "
+                 "else 1)")
+      ->check(ahhs::modules::SeedTextError);
   app.add_option("--joints", joints, "gait docking: damped or fixed")->capture_default_str();
   app.add_option("--modules", modules, "gait: modules in the chain (>= 2)")->capture_default_str();
   app.add_option("--duration", duration, "episode length, simulated seconds (default: the task's)");
@@ -79,7 +83,15 @@ int main(int argc, char** argv) {
     spec.config.duration = duration;
     const std::string config_error = ahhs::sim::CheckConfig(spec.config);
     if (!config_error.empty()) throw std::invalid_argument(config_error);
-    spec.genome = ahhs::modules::LoadGenomeFile(genome_file);
+    nlohmann::json meta;
+    spec.genome = ahhs::modules::LoadGenomeFile(genome_file, &meta);
+    if (!app.count("--seed")) {
+      if (const auto stored = ahhs::modules::StoredEvalSeed(meta)) {
+        seed = *stored;
+        std::printf("seed %llu: the evaluation seed stored in %s\n",
+                    static_cast<unsigned long long>(seed), genome_file.c_str());
+      }
+    }
     const std::string fit = al::CheckGenomeFits(spec.genome, spec.config);
     if (!fit.empty()) throw std::invalid_argument(genome_file + ": " + fit);
     if (fused && !log_file.empty())
@@ -136,8 +148,8 @@ int main(int argc, char** argv) {
     return g_interrupted ? 130 : 2;
   }
   std::printf(
-      "scenario %s, seed %lld, %s arena%s; ticks without a state at the fitness monitor: %d\n",
-      ahhs::sim::ScenarioName(spec.config.kind), static_cast<long long>(seed),
+      "scenario %s, seed %llu, %s arena%s; ticks without a state at the fitness monitor: %d\n",
+      ahhs::sim::ScenarioName(spec.config.kind), static_cast<unsigned long long>(seed),
       fused ? "fused" : "process", realtime ? ", real time" : "", result.states_missed);
   std::printf("fitness: %.17g\n", result.fitness);
   return 0;

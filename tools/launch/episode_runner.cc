@@ -82,7 +82,7 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
 
   sim_control_t c{};
   c.episode = ep;
-  c.seed = spec.seed;
+  c.seed = static_cast<std::int64_t>(spec.seed);  // LCM has no unsigned type: the same 64 bits
   c.scenario = sim::ScenarioName(spec.config.kind);
   c.num_modules = modules;
   c.joints = spec.config.joints == sim::Joints::kFixed ? sim_control_t::JOINTS_FIXED
@@ -198,7 +198,7 @@ EpisodeResult RunFused(const EpisodeSpec& spec) {
 
 EpisodeResult RunDirectEpisode(const EpisodeSpec& spec, const DirectObserver& observer) {
   auto scenario = sim::MakeScenario(spec.config);
-  scenario->Reset(static_cast<std::uint64_t>(spec.seed));
+  scenario->Reset(spec.seed);
   const int n = scenario->num_compartments();
   std::vector<std::vector<int>> links(static_cast<std::size_t>(n));
   for (auto [a, b] : scenario->Docking()) {

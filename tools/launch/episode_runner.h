@@ -19,7 +19,7 @@ namespace ahhs::launch {
 struct EpisodeSpec {
   sim::ScenarioConfig config;
   modules::Genome genome;
-  std::int64_t seed = 1;
+  std::uint64_t seed = 1;    // the episode seed (on the wire: its bits in sim_control_t.seed)
   std::int64_t episode = 1;  // unique on the bus
   bool realtime = false;
   std::string arena = "AHHS";

@@ -24,6 +24,7 @@
 #include "evolver/evolve/evolution.h"
 #include "evolver/store/run_store.h"
 #include "modules/core/genome_json.h"
+#include "modules/core/random.h"
 #include "modules/core/variation.h"
 #include "sim/core/behaviour.h"
 #include "sim/node/sim_codec.h"
@@ -113,7 +114,7 @@ int main(int argc, char** argv) {
   std::string scenario = "gait", joints = "damped";
   int modules = 5, generation = -1, individual = -1, mutants = 0;
   double duration = 0;
-  std::int64_t seed = 1;
+  std::uint64_t seed = 1;
   std::uint64_t mutant_seed = 1;
   app.add_option("run", run_dir, "run directory of ahhs-evolve");
   app.add_option("--generation", generation, "generation (default: the run's best individual)");
@@ -129,14 +130,19 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--modules", modules, "with --genome: gait modules")->capture_default_str();
   app.add_option("--duration", duration, "with --genome: simulated seconds (0: the task's)");
-  app.add_option("--seed", seed, "evaluation seed (default: the stored one, or 1)");
+  app.add_option("--seed", seed,
+                 "evaluation seed, 0 to 2^64-1 (default: the stored one: the run's, or the genome "
+                 "file's; else 1)")
+      ->check(am::SeedTextError);
   app.add_option("--log", log_file, "write the episode as an LCM log");
   app.add_option("--csv", csv_file, "write the per-tick trace as CSV");
   app.add_option("--rules-csv", rules_csv, "write how often each rule triggered, per module");
   app.add_option("--mutants", mutants, "evaluate this many single mutants of the genome")
       ->check(CLI::Range(0, 100000));
   app.add_option("--mutants-csv", mutants_csv, "where --mutants writes its results");
-  app.add_option("--mutant-seed", mutant_seed, "seed of the mutations")->capture_default_str();
+  app.add_option("--mutant-seed", mutant_seed, "seed of the mutations")
+      ->check(am::SeedTextError)
+      ->capture_default_str();
   std::string mutation_profile;
   app.add_option("--mutation-profile", mutation_profile,
                  "operator of the mutants: paper or fine-doses (default: the run's, else paper)")
@@ -173,7 +179,7 @@ int main(int argc, char** argv) {
       spec.config = config.scenario;
       mutation = config.ga.mutation;
       spec.genome = record.genome;
-      spec.seed = app.count("--seed") ? seed : static_cast<std::int64_t>(record.eval_seed);
+      spec.seed = app.count("--seed") ? seed : record.eval_seed;
       if (!app.count("--seed")) stored_fitness = record.evaluation.fitness;
       what = run_dir + ", generation " + std::to_string(record.generation) + ", individual " +
              std::to_string(record.index);
@@ -185,11 +191,19 @@ int main(int argc, char** argv) {
       spec.config.duration = duration;
       const std::string error = ahhs::sim::CheckConfig(spec.config);
       if (!error.empty()) throw std::invalid_argument(error);
-      spec.genome = am::LoadGenomeFile(genome_file);
+      nlohmann::json meta;
+      spec.genome = am::LoadGenomeFile(genome_file, &meta);
       const std::string fit = al::CheckGenomeFits(spec.genome, spec.config);
       if (!fit.empty()) throw std::invalid_argument(genome_file + ": " + fit);
       spec.seed = seed;
       what = genome_file;
+      const auto stored_seed = am::StoredEvalSeed(meta);
+      if (!app.count("--seed") && stored_seed) {
+        spec.seed = *stored_seed;
+        what += " (with the evaluation seed it stores)";
+        if (meta.contains("fitness") && meta["fitness"].is_number())
+          stored_fitness = meta["fitness"].get<double>();
+      }
     }
     if (!mutation_profile.empty()) mutation.profile = am::ParseMutationProfile(mutation_profile);
   } catch (const std::exception& e) {
@@ -343,7 +357,8 @@ int main(int argc, char** argv) {
       out.Commit();
       std::printf("%d single mutants evaluated into %s\n", mutants, mutants_csv.c_str());
     }
-    std::printf("replayed %s with seed %lld\n", what.c_str(), static_cast<long long>(spec.seed));
+    std::printf("replayed %s with seed %llu\n", what.c_str(),
+                static_cast<unsigned long long>(spec.seed));
     if (!result.ok) {
       std::printf("the episode failed: %s (a failed episode scores 0 in a run)\n",
                   result.error.c_str());

@@ -1,4 +1,4 @@
-// AHHS1 and AHHS2 genomes (../shared/spec/ahhs-model.md, docs/model.md): plain data shared by
+// AHHS1 and AHHS2 genomes (docs/model.md): plain data shared by
 // every compartment of a robot. Value ranges below are invariants that random initialisation,
 // mutation, crossover and file loading all keep.
 #pragma once

@@ -1,7 +1,7 @@
 // The two tasks of the paper behind one interface: apply actuator values, step one control
-// period, read sensors, organism state and fitness (../shared/spec/scenarios.md,
-// docs/scenarios.md). No LCM, no I/O. One stepping ODE world per process: ODE's solver draws
-// from a process-global random seed (see GaitScenario).
+// period, read sensors, organism state and fitness (docs/scenarios.md). No LCM, no I/O. One
+// stepping ODE world per process: ODE's solver draws from a process-global random seed (see
+// GaitScenario).
 #pragma once
 
 #include <cstdint>

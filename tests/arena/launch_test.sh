@@ -16,7 +16,9 @@ bin=${1:?usage: launch_test.sh BIN_DIR}
 [[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$0" "$@"
 url="udpm://239.255.42.50:7741?ttl=0&recv_buf_size=4194304"
 tmp=$(mktemp -d)
-trap 'pkill -f "$bin/ahhs-" 2>/dev/null; rm -rf "$tmp"' EXIT
+# Processes of this test only: its process group (never a run of the same build elsewhere).
+pg=$(ps -o pgid= -p $$ | tr -d ' ')
+trap 'pkill -g "$pg" -f "$bin/ahhs-" 2>/dev/null; rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 fit() { tail -1 "$1" | sed -n 's/^fitness: //p'; }
 G="$bin/ahhs-genome"
@@ -64,27 +66,27 @@ grep -q "logger" $tmp/err || fail "logger message: $(cat $tmp/err)"
 echo "== 4. a module killed mid-episode"
 start=$(date +%s)
 "$bin/ahhs-launch" --scenario gait --genome $tmp/g2.json --duration 600 --arena KILL --lcm-url "$url" >/dev/null 2>$tmp/kill.err & lp=$!
-for i in $(seq 50); do pgrep -f "ahhs-module --id 2 .*KILL" >/dev/null && break; sleep 0.1; done
+for i in $(seq 50); do pgrep -g "$pg" -f "ahhs-module --id 2 .*KILL" >/dev/null && break; sleep 0.1; done
 sleep 1
-pkill -9 -f "ahhs-module --id 2 .*KILL" || fail "no module to kill"
+pkill -g "$pg" -9 -f "ahhs-module --id 2 .*KILL" || fail "no module to kill"
 wait $lp && fail "launcher succeeded after a module was killed"
 elapsed=$(( $(date +%s) - start ))
 grep -q "ahhs-module 2 ended during the episode (killed by signal 9)" $tmp/kill.err || fail "kill message: $(cat $tmp/kill.err)"
 (( elapsed < 15 )) || fail "took ${elapsed}s"
 sleep 0.5
-pgrep -f "arena KILL" && fail "orphan processes left"
+pgrep -g "$pg" -f "arena KILL" && fail "orphan processes left"
 echo "ended with: $(grep "episode failed" $tmp/kill.err) after ${elapsed}s; no orphans"
 
 echo "== 4b. Ctrl-C (SIGINT) to the launcher mid-episode"
 "$bin/ahhs-launch" --scenario gait --genome $tmp/g2.json --duration 600 --arena INTR --lcm-url "$url" >/dev/null 2>$tmp/int.err & lp=$!
-for i in $(seq 50); do pgrep -f "ahhs-module --id 4 .*INTR" >/dev/null && break; sleep 0.1; done
+for i in $(seq 50); do pgrep -g "$pg" -f "ahhs-module --id 4 .*INTR" >/dev/null && break; sleep 0.1; done
 sleep 1
 kill -INT $lp
 wait $lp; rc=$?
 (( rc == 130 )) || fail "interrupted launcher exit status $rc: $(cat $tmp/int.err)"
 grep -q "episode failed: interrupted" $tmp/int.err || fail "interrupt message: $(cat $tmp/int.err)"
 sleep 0.5
-pgrep -f "arena INTR" && fail "orphan processes left after Ctrl-C"
+pgrep -g "$pg" -f "arena INTR" && fail "orphan processes left after Ctrl-C"
 echo "interrupted: exit status $rc, no orphans"
 
 echo "== seeds are unsigned 64-bit numbers, never clamped"

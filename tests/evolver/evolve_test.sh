@@ -14,9 +14,11 @@ bin=${1:?usage: evolve_test.sh BIN_DIR}
 [[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$0" "$@"
 url="udpm://239.255.42.60:7751?ttl=0&recv_buf_size=4194304"
 tmp=$(mktemp -d)
+# Processes of this test only: its process group (never a run of the same build elsewhere).
+pg=$(ps -o pgid= -p $$ | tr -d ' ')
 cleanup() {
-  pkill -KILL -f "$bin/ahhs-(evolve|worker)" 2>/dev/null
-  pkill -KILL -f "$bin/(bus_peer|farm_peer)" 2>/dev/null
+  pkill -g "$pg" -KILL -f "$bin/ahhs-(evolve|worker)" 2>/dev/null
+  pkill -g "$pg" -KILL -f "$bin/(bus_peer|farm_peer)" 2>/dev/null
   rm -rf "$tmp"
 }
 trap cleanup EXIT
@@ -89,7 +91,7 @@ for at in 2 9; do
   stored=$(($(wc -l <$tmp/killed$at/generations.csv) - 1))
   [[ $stored -lt 30 ]] || fail "the run ended before the kill"
   sleep 0.3
-  pgrep -f "$bin/ahhs-worker" >/dev/null && fail "local workers outlived a killed evolver"
+  pgrep -g "$pg" -f "$bin/ahhs-worker" >/dev/null && fail "local workers outlived a killed evolver"
   $E --resume $tmp/killed$at --workers 2 >$tmp/resume.out 2>&1 || { cat $tmp/resume.out; fail "resume"; }
   grep -q "resuming at generation $stored" $tmp/resume.out || fail "resume message: $(head -3 $tmp/resume.out)"
   same_run $tmp/whole $tmp/killed$at "killed after $stored generations, resumed"
@@ -104,7 +106,7 @@ kill -INT $pid; wait $pid; rc=$?
 [[ $rc == 130 ]] || fail "Ctrl-C exit status $rc: $(cat $tmp/ctrlc.out)"
 grep -q "continue with: ahhs-evolve --resume $tmp/ctrlc" $tmp/ctrlc.out || fail "Ctrl-C message: $(cat $tmp/ctrlc.out)"
 sleep 0.3
-pgrep -f "$bin/ahhs-worker" >/dev/null && fail "workers left after Ctrl-C"
+pgrep -g "$pg" -f "$bin/ahhs-worker" >/dev/null && fail "workers left after Ctrl-C"
 $E --resume $tmp/ctrlc >/dev/null 2>&1 || fail "resume after Ctrl-C"
 same_run $tmp/whole $tmp/ctrlc "Ctrl-C, resumed"
 $E --resume $tmp/ctrlc >$tmp/again.out 2>&1 || fail "resume of a finished run"

@@ -7,7 +7,9 @@ bin=${1:?usage: report_test.sh BIN_DIR}
 [[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$0" "$@"
 url="udpm://239.255.42.80:7771?ttl=0&recv_buf_size=4194304"
 tmp=$(mktemp -d)
-trap 'pkill -KILL -f "$bin/ahhs-(evolve|worker)" 2>/dev/null; rm -rf "$tmp"' EXIT
+# Processes of this test only: its process group (never a run of the same build elsewhere).
+pg=$(ps -o pgid= -p $$ | tr -d ' ')
+trap 'pkill -g "$pg" -KILL -f "$bin/ahhs-(evolve|worker)" 2>/dev/null; rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 E="$bin/ahhs-evolve"
 common="--population 8 --generations 4 --lcm-url $url --workers 2"

@@ -9,7 +9,9 @@ bin=${1:?usage: logger_test.sh BIN_DIR}
 [[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$0" "$@"
 url="udpm://239.255.42.90:7781?ttl=0&recv_buf_size=4194304"
 tmp=$(mktemp -d)
-trap 'pkill -f "$bin/ahhs-logger" 2>/dev/null; rm -rf "$tmp"' EXIT
+# Processes of this test only: its process group (never a run of the same build elsewhere).
+pg=$(ps -o pgid= -p $$ | tr -d ' ')
+trap 'pkill -g "$pg" -f "$bin/ahhs-logger" 2>/dev/null; rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 wait_for_file() { for _ in $(seq 200); do [[ -e "$1" ]] && return 0; sleep 0.02; done; fail "no $1"; }
 

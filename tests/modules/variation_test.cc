@@ -345,7 +345,7 @@ TEST_CASE("seed text: every uint64 and nothing else", "[variation]") {
   for (const char* ok : {"0", "1", "9223372036854775807", "9223372036854775808",
                          "17941434774548605579", "18446744073709551615", "00018446744073709551615"})
     CHECK(SeedTextError(ok).empty());
-  for (const char* bad : {"", "-1", "+1", "18446744073709551616", "99999999999999999999", "1.5",
-                          "1e3", "x", " 1"})
+  for (const char* bad :
+       {"", "-1", "+1", "18446744073709551616", "99999999999999999999", "1.5", "1e3", "x", " 1"})
     CHECK_THAT(SeedTextError(bad), Catch::Contains("a seed is a whole number"));
 }

@@ -18,20 +18,6 @@ DriveKind ParseDrive(const std::string& name) {
                               "' (use zero, wave, swingup (pendulum) or inchworm (gait))");
 }
 
-const char* DriveName(DriveKind drive) {
-  switch (drive) {
-    case DriveKind::kZero:
-      return "zero";
-    case DriveKind::kWave:
-      return "wave";
-    case DriveKind::kSwingUp:
-      return "swingup";
-    case DriveKind::kInchworm:
-      return "inchworm";
-  }
-  return "?";
-}
-
 bool DriveFits(DriveKind drive, const Scenario& scenario) {
   const bool pendulum = dynamic_cast<const PendulumScenario*>(&scenario) != nullptr;
   if (drive == DriveKind::kSwingUp) return pendulum;

@@ -13,7 +13,6 @@ enum class DriveKind { kZero, kWave, kSwingUp, kInchworm };
 
 // "zero" / "wave" / "swingup" / "inchworm"; throws std::invalid_argument naming the choices.
 DriveKind ParseDrive(const std::string& name);
-const char* DriveName(DriveKind drive);
 // True if the drive is defined for the scenario (swingup: pendulum only; inchworm: gait only).
 bool DriveFits(DriveKind drive, const Scenario& scenario);
 

@@ -1,6 +1,9 @@
 #include "evolver/store/run_store.h"
 
+#include <fcntl.h>
 #include <sqlite3.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -20,6 +23,28 @@ namespace {
 
 constexpr const char* kDatabaseName = "run.sqlite";
 constexpr const char* kFormatName = "ahhs-run";
+constexpr const char* kLockName = "run.lock";
+
+// Takes the write lock of a run directory; returns its descriptor, -1 when another process holds
+// it. Throws when the lock file cannot be made.
+int TryLock(const fs::path& root) {
+  const fs::path path = root / kLockName;
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw RunStoreError("cannot create " + path.string());
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+int LockOrThrow(const fs::path& root) {
+  const int fd = TryLock(root);
+  if (fd < 0)
+    throw RunStoreError(root.string() +
+                        " is in use: another process (ahhs-evolve) is writing this run");
+  return fd;
+}
 
 // One prepared statement; finalised on scope exit.
 class Statement {
@@ -112,9 +137,22 @@ sqlite3* OpenDatabase(const fs::path& path, int flags) {
 
 }  // namespace
 
-RunStore::RunStore(std::string dir, sqlite3* db) : dir_(std::move(dir)), db_(db) {}
+RunStore::RunStore(std::string dir, sqlite3* db, int lock_fd)
+    : dir_(std::move(dir)), db_(db), lock_fd_(lock_fd) {}
 
-RunStore::~RunStore() { sqlite3_close(db_); }
+RunStore::~RunStore() {
+  sqlite3_close(db_);
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+}
+
+bool RunStore::InUse(const std::string& dir) {
+  const fs::path path = fs::path(dir) / kLockName;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool held = ::flock(fd, LOCK_SH | LOCK_NB) != 0;
+  ::close(fd);
+  return held;
+}
 
 void RunStore::Exec(const char* sql) const {
   char* error = nullptr;
@@ -136,13 +174,26 @@ std::unique_ptr<RunStore> RunStore::Create(const std::string& dir, const std::st
       if (!overwrite)
         throw RunStoreError(dir + " already holds files; continue that run with --resume " + dir +
                             ", or pass --overwrite to replace it");
-      for (const auto& entry : fs::directory_iterator(root)) fs::remove_all(entry.path(), ec);
     }
   }
-  fs::create_directories(root / "best", ec);
+  fs::create_directories(root, ec);
   if (ec) throw RunStoreError("cannot create " + dir + ": " + ec.message());
-  sqlite3* db = OpenDatabase(root / kDatabaseName, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
-  std::unique_ptr<RunStore> store(new RunStore(dir, db));
+  const int lock_fd = LockOrThrow(root);
+  for (const auto& entry : fs::directory_iterator(root))
+    if (entry.path().filename() != kLockName) fs::remove_all(entry.path(), ec);
+  fs::create_directories(root / "best", ec);
+  if (ec) {
+    ::close(lock_fd);
+    throw RunStoreError("cannot create " + dir + ": " + ec.message());
+  }
+  sqlite3* db = nullptr;
+  try {
+    db = OpenDatabase(root / kDatabaseName, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  } catch (...) {
+    ::close(lock_fd);
+    throw;
+  }
+  std::unique_ptr<RunStore> store(new RunStore(dir, db, lock_fd));
   store->Exec(
       "PRAGMA journal_mode=WAL;"
       "PRAGMA synchronous=NORMAL;"
@@ -174,14 +225,21 @@ std::unique_ptr<RunStore> RunStore::Create(const std::string& dir, const std::st
   return store;
 }
 
-std::unique_ptr<RunStore> RunStore::Open(const std::string& dir) {
+std::unique_ptr<RunStore> RunStore::Open(const std::string& dir, StoreAccess access) {
   const fs::path root(dir);
   std::error_code ec;
   if (!fs::is_directory(root, ec)) throw RunStoreError(dir + " is not a directory");
   if (!fs::exists(root / kDatabaseName, ec))
     throw RunStoreError(dir + " is not a run directory (no " + kDatabaseName + ")");
-  sqlite3* db = OpenDatabase(root / kDatabaseName, SQLITE_OPEN_READWRITE);
-  std::unique_ptr<RunStore> store(new RunStore(dir, db));
+  const int lock_fd = access == StoreAccess::kWrite ? LockOrThrow(root) : -1;
+  sqlite3* db = nullptr;
+  try {
+    db = OpenDatabase(root / kDatabaseName, SQLITE_OPEN_READWRITE);
+  } catch (...) {
+    if (lock_fd >= 0) ::close(lock_fd);
+    throw;
+  }
+  std::unique_ptr<RunStore> store(new RunStore(dir, db, lock_fd));
   try {
     Statement check(db, "PRAGMA quick_check");
     if (!check.Step() || check.Text(0) != "ok")
@@ -190,7 +248,7 @@ std::unique_ptr<RunStore> RunStore::Open(const std::string& dir) {
   } catch (const RunStoreError& e) {
     throw RunStoreError(dir + ": not a readable run database (" + e.what() + ")");
   }
-  fs::create_directories(root / "best", ec);
+  if (access == StoreAccess::kWrite) fs::create_directories(root / "best", ec);
   return store;
 }
 

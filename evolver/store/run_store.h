@@ -47,18 +47,28 @@ struct GenerationRecord {
   int session = 0;
 };
 
+// A run directory is written by one process at a time: Create and Open(kWrite) hold an exclusive
+// lock on `run.lock` in it for the store's lifetime (released by the kernel when the process dies,
+// so kill -9 leaves no stale lock). Readers (kRead) take no lock.
+enum class StoreAccess { kRead, kWrite };
+
 class RunStore {
  public:
   static constexpr int kFormatVersion = 1;
 
   // Makes a new run directory. Refuses an existing non-empty directory unless `overwrite`, in
-  // which case the old run's files are removed first. `config` is stored verbatim.
+  // which case the old run's files are removed first. `config` is stored verbatim. Refuses a
+  // directory that another process is writing.
   static std::unique_ptr<RunStore> Create(const std::string& dir, const std::string& run_id,
                                           std::uint64_t run_seed, const nlohmann::json& config,
                                           bool overwrite);
-  // Opens an existing run (to resume or to read). Checks that it is a run directory of this
-  // format and that its database is intact.
-  static std::unique_ptr<RunStore> Open(const std::string& dir);
+  // Opens an existing run (kWrite to resume it, kRead to read it). Checks that it is a run
+  // directory of this format and that its database is intact; kWrite refuses a directory that
+  // another process is writing.
+  static std::unique_ptr<RunStore> Open(const std::string& dir,
+                                        StoreAccess access = StoreAccess::kWrite);
+  // True when a process holds the write lock of `dir` (a run in progress).
+  static bool InUse(const std::string& dir);
   ~RunStore();
   RunStore(const RunStore&) = delete;
   RunStore& operator=(const RunStore&) = delete;
@@ -89,13 +99,14 @@ class RunStore {
   IndividualRecord Best() const;
 
  private:
-  RunStore(std::string dir, sqlite3* db);
+  RunStore(std::string dir, sqlite3* db, int lock_fd);
   void Exec(const char* sql) const;
   void LoadRunTable();
   std::vector<IndividualRecord> LoadIndividuals(int generation, int index) const;  // -1: all
 
   std::string dir_;
   sqlite3* db_ = nullptr;
+  int lock_fd_ = -1;  // the write lock, -1 for a reader
   std::string run_id_;
   std::uint64_t run_seed_ = 0;
   nlohmann::json config_;

@@ -181,6 +181,26 @@ TEST_CASE("an existing run directory is never overwritten unless asked") {
   CHECK_THROWS_AS(RunStore::Create(tmp.path + "/file", "c", 1, json, false), RunStoreError);
 }
 
+TEST_CASE("a run directory has one writer at a time; readers need no lock") {
+  TempDir tmp;
+  const std::string dir = tmp.path + "/run";
+  const auto json = evolver::ConfigToJson(SmallConfig());
+  {
+    auto writer = RunStore::Create(dir, "a", 1, json, false);
+    CHECK(RunStore::InUse(dir));
+    try {
+      RunStore::Open(dir);
+      FAIL("a second writer was let in");
+    } catch (const RunStoreError& e) {
+      CHECK_THAT(e.what(), Catch::Contains("is in use"));
+    }
+    CHECK_THROWS_WITH(RunStore::Create(dir, "b", 1, json, true), Catch::Contains("is in use"));
+    CHECK(RunStore::Open(dir, evolver::StoreAccess::kRead)->run_id() == "a");
+  }
+  CHECK_FALSE(RunStore::InUse(dir));
+  CHECK(RunStore::Open(dir)->run_id() == "a");
+}
+
 TEST_CASE("opening something that is not an intact run gives a clear error") {
   TempDir tmp;
   auto message = [](const std::string& dir) {

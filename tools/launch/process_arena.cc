@@ -1,5 +1,6 @@
 #include "tools/launch/process_arena.h"
 
+#include <fcntl.h>
 #include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -15,28 +16,41 @@
 
 namespace ahhs::launch {
 
-pid_t SpawnChild(const std::vector<std::string>& argv, bool quiet) {
+pid_t SpawnChild(const std::vector<std::string>& argv, bool quiet, const std::string& output_file) {
+  int out_fd = -1;
+  if (!output_file.empty()) {
+    out_fd = open(output_file.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    if (out_fd < 0) throw std::runtime_error("cannot write " + output_file);
+  }
   const pid_t parent = getpid();
   const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("fork failed");
-  if (pid == 0) {
-    prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the owner
-    if (getppid() != parent) _exit(1);
-    std::signal(SIGINT, SIG_IGN);  // Ctrl-C goes to the owner, which stops us in order
-    if (quiet) {
-      FILE* devnull = std::fopen("/dev/null", "w");
-      if (devnull) dup2(fileno(devnull), STDOUT_FILENO);
-    }
-    // The owner's sockets (e.g. its LCM bus) stay with the owner.
-    for (int fd = 3; fd < 1024; ++fd) close(fd);
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    execv(args[0], args.data());
-    std::fprintf(stderr, "cannot run %s\n", args[0]);
-    _exit(127);
+  if (pid < 0) {
+    if (out_fd >= 0) close(out_fd);
+    throw std::runtime_error("fork failed");
   }
-  return pid;
+  if (pid > 0) {
+    if (out_fd >= 0) close(out_fd);
+    return pid;
+  }
+  // The child.
+  prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the owner
+  if (getppid() != parent) _exit(1);
+  std::signal(SIGINT, SIG_IGN);  // Ctrl-C goes to the owner, which stops us in order
+  if (out_fd >= 0) {
+    dup2(out_fd, STDOUT_FILENO);
+    dup2(out_fd, STDERR_FILENO);
+  } else if (quiet) {
+    FILE* devnull = std::fopen("/dev/null", "w");
+    if (devnull) dup2(fileno(devnull), STDOUT_FILENO);
+  }
+  // The owner's sockets (e.g. its LCM bus) stay with the owner.
+  for (int fd = 3; fd < 1024; ++fd) close(fd);
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  execv(args[0], args.data());
+  std::fprintf(stderr, "cannot run %s\n", args[0]);
+  _exit(127);
 }
 
 void StopChildren(std::vector<pid_t>* pids, std::chrono::milliseconds grace) {

@@ -31,9 +31,11 @@ struct ProcessArenaOptions {
 };
 
 // Starts `argv` (argv[0] a path) as a child that dies with this process and ignores Ctrl-C (its
-// owner stops it in order). With `quiet` its stdout goes to /dev/null. No descriptor beyond
-// stdin/stdout/stderr is inherited. Throws std::runtime_error when fork fails.
-pid_t SpawnChild(const std::vector<std::string>& argv, bool quiet);
+// owner stops it in order). With `quiet` its stdout goes to /dev/null; with an `output_file` its
+// stdout and stderr are appended to that file. No descriptor beyond stdin/stdout/stderr is
+// inherited. Throws std::runtime_error when fork fails or the output file cannot be opened.
+pid_t SpawnChild(const std::vector<std::string>& argv, bool quiet,
+                 const std::string& output_file = "");
 
 // Sends SIGTERM to every child (pid > 0), waits up to `grace`, then SIGKILLs the rest. Sets
 // every pid to -1.

@@ -159,7 +159,7 @@ int main(int argc, char** argv) {
     if (mutants > 0 && mutants_csv.empty())
       throw std::invalid_argument("--mutants needs --mutants-csv FILE");
     if (!run_dir.empty()) {
-      auto store = ev::RunStore::Open(run_dir);
+      auto store = ev::RunStore::Open(run_dir, ev::StoreAccess::kRead);
       const ev::EvolveConfig config = ev::ConfigFromJson(store->config());
       ev::IndividualRecord record;
       if (generation < 0) {

@@ -1,0 +1,148 @@
+#!/usr/bin/env bash
+# ahhs-study end to end, inside a private network namespace:
+#  1. bad plans give one line naming the file and line, exit 2, and leave no study directory;
+#  2. a study (2 configurations x 2 seeds, 2 runs at a time) ends with every run complete;
+#  3. kill -9 of ahhs-study at a random moment, or Ctrl-C, then run --resume: every run equals the
+#     uninterrupted study's bit for bit; a second ahhs-study on the same directory is refused;
+#  4. export keeps best genome, generations and summary per run; a new study given the export
+#     runs only what the export lacks, and its runs equal the others bit for bit;
+#  5. status reports every run.
+set -uo pipefail
+bin=${1:?usage: study_test.sh BIN_DIR}
+[[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$0" "$@"
+src=${AHHS_SOURCE_DIR:?}
+tmp=$(mktemp -d)
+pg=$(ps -o pgid= -p $$ | tr -d ' ')
+cleanup() {
+  pkill -g "$pg" -KILL -f "$bin/ahhs-(study|evolve|worker)" 2>/dev/null
+  rm -rf "$tmp"
+}
+trap cleanup EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+S="$bin/ahhs-study"
+dump() {
+  sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, eval_seed, elite,
+    printf('%!.17g', fitness), printf('%!.17g', cost) FROM individuals ORDER BY generation, idx"
+}
+runs="pend2/seed-1 pend2/seed-2 pend1/seed-1 pend1/seed-2"
+same_study() {  # same_study DIR_A DIR_B WHAT
+  for r in $runs; do
+    dump "$1/$r" >$tmp/a.dump; dump "$2/$r" >$tmp/b.dump
+    [[ -s $tmp/a.dump ]] || fail "$3: $r is empty"
+    cmp -s $tmp/a.dump $tmp/b.dump || fail "$3: $r differs"
+    # best.json: the same genome and metadata but the run id (host, process, time).
+    grep -v '"run":' "$1/$r/best.json" >$tmp/a.json; grep -v '"run":' "$2/$r/best.json" >$tmp/b.json
+    cmp -s $tmp/a.json $tmp/b.json || { diff $tmp/a.json $tmp/b.json; fail "$3: $r/best.json differs"; }
+  done
+  echo "$3: every run identical"
+}
+cat >$tmp/plan.toml <<PLAN
+name = "tiny"
+[defaults]
+generations = 20
+population = 24
+duration = 20.0
+[[config]]
+name = "pend2"
+preset = "$src/configs/pendulum-ahhs2-15.toml"
+seeds = 2
+set = { hormones = 4, rules = 6 }
+[[config]]
+name = "pend1"
+preset = "$src/configs/pendulum-ahhs1-60.toml"
+seeds = 2
+[config.set]
+rules = 20
+PLAN
+opts="--parallel 2 --workers-per-run 1 --port-base 7811"
+
+echo "== 1. bad plans"
+bad() {  # bad WHAT EXPECTED_TEXT: the plan in $tmp/bad.toml
+  "$S" run $tmp/bad.toml --out $tmp/bad >$tmp/out 2>&1; rc=$?
+  [[ $rc == 2 ]] || fail "$1: exit $rc: $(cat $tmp/out)"
+  [[ $(wc -l <$tmp/out) == 1 ]] || fail "$1: not one line: $(cat $tmp/out)"
+  grep -q -- "$2" $tmp/out || fail "$1: $(cat $tmp/out)"
+  [[ ! -e $tmp/bad ]] || fail "$1: left a study directory"
+  echo "$1: $(cat $tmp/out)"
+}
+sed 's/^seeds = 2$/seeds = 0/' $tmp/plan.toml >$tmp/bad.toml; bad "no seeds" "bad.toml:9: seeds must be"
+sed 's/^generations = 20$/generatons = 20/' $tmp/plan.toml >$tmp/bad.toml; bad "unknown setting" "bad.toml:3: 'generatons' is not an ahhs-evolve setting"
+sed 's/^name = "pend1"$/name = "pend2"/' $tmp/plan.toml >$tmp/bad.toml; bad "repeated name" "pend2 is named twice"
+sed 's/pendulum-ahhs1-60/nothing-here/' $tmp/plan.toml >$tmp/bad.toml; bad "missing preset" "nothing-here.toml does not exist"
+sed 's/^seeds = 2$/seeds = 2\nseeds = 3/' $tmp/plan.toml >$tmp/bad.toml; bad "repeated key" "bad.toml:10:"
+sed 's/^name = "tiny"$/name = "tiny"\nparallel = 3/' $tmp/plan.toml >$tmp/bad.toml; bad "unknown key" "unknown key 'parallel'"
+sed 's/^duration = 20.0$/duration = "long"/' $tmp/plan.toml >$tmp/bad.toml; bad "refused by ahhs-evolve" "ahhs-evolve refuses it"
+"$S" run --resume $tmp/nothing >$tmp/out 2>&1; [[ $? == 2 ]] || fail "resume of nothing: $(cat $tmp/out)"
+grep -q "is not a study directory" $tmp/out || fail "resume of nothing: $(cat $tmp/out)"
+"$S" run $tmp/plan.toml >$tmp/out 2>&1; [[ $? == 2 ]] || fail "no --out: $(cat $tmp/out)"
+
+echo "== 2. a whole study"
+"$S" run $tmp/plan.toml --out $tmp/A $opts >$tmp/A.out 2>&1 || { cat $tmp/A.out; fail "study A"; }
+grep -q "^study complete: 4 runs" $tmp/A.out || fail "study A: $(cat $tmp/A.out)"
+for r in $runs; do
+  [[ $(wc -l <$tmp/A/$r/generations.csv) == 21 ]] || fail "$r: generations.csv"
+  [[ -s $tmp/A/$r/summary.json && -s $tmp/A/$r.log ]] || fail "$r: summary or log missing"
+done
+"$S" run $tmp/plan.toml --out $tmp/A $opts >$tmp/out 2>&1; [[ $? == 2 ]] || fail "a second study into A"
+grep -q "already holds files; continue that study with ahhs-study run --resume $tmp/A" $tmp/out || fail "$(cat $tmp/out)"
+"$S" run --resume $tmp/A $opts >$tmp/out 2>&1 || fail "resume of a complete study: $(cat $tmp/out)"
+grep -q "4 of 4 runs complete, 0 to run" $tmp/out || fail "resume of a complete study: $(cat $tmp/out)"
+
+echo "== 3. kill -9, Ctrl-C, resume"
+for k in 1 2 3; do
+  rm -rf $tmp/B
+  "$S" run $tmp/plan.toml --out $tmp/B $opts >$tmp/B.out 2>&1 &
+  pid=$!
+  sleep "$((RANDOM % 3)).$((RANDOM % 10))"
+  kill -9 $pid; wait $pid 2>/dev/null
+  # The runs it started end themselves (their owner is gone); the resume waits for them.
+  "$S" run --resume $tmp/B $opts >$tmp/B2.out 2>&1 || { cat $tmp/B2.out; fail "resume after kill -9 #$k"; }
+  same_study $tmp/A $tmp/B "kill -9 #$k ($(grep -c '^\[.*complete' $tmp/B.out) runs had completed)"
+done
+rm -rf $tmp/B
+"$S" run $tmp/plan.toml --out $tmp/B $opts >$tmp/B.out 2>&1 &
+pid=$!
+for _ in $(seq 100); do grep -q started $tmp/B.out 2>/dev/null && break; sleep 0.05; done
+"$S" run --resume $tmp/B $opts >$tmp/out 2>&1; rc=$?
+[[ $rc == 1 ]] && grep -q "is in use by another ahhs-study run" $tmp/out || fail "second ahhs-study: $rc $(cat $tmp/out)"
+kill -INT $pid; wait $pid; rc=$?
+[[ $rc == 130 ]] || fail "Ctrl-C: exit $rc: $(cat $tmp/B.out)"
+grep -q "continue with: ahhs-study run --resume $tmp/B" $tmp/B.out || fail "Ctrl-C: $(cat $tmp/B.out)"
+"$S" status $tmp/B >$tmp/status || fail "status"
+grep -Eq "pend2/seed-1 +(stopped|complete)" $tmp/status || fail "status after Ctrl-C: $(cat $tmp/status)"
+"$S" run --resume $tmp/B $opts >$tmp/B2.out 2>&1 || { cat $tmp/B2.out; fail "resume after Ctrl-C"; }
+same_study $tmp/A $tmp/B "Ctrl-C"
+
+echo "== 4. export, and a study that starts from it"
+"$S" export $tmp/A $tmp/E >$tmp/out || fail "export: $(cat $tmp/out)"
+grep -q "exported 4 complete runs" $tmp/out || fail "export: $(cat $tmp/out)"
+[[ "$(cd $tmp/E/pend1/seed-2 && ls | tr '\n' ' ')" == "best.json generations.csv summary.json " ]] ||
+  fail "export holds: $(ls $tmp/E/pend1/seed-2)"
+[[ -z "$(find $tmp/E -name '*.sqlite' -o -name '*.log')" ]] || fail "export holds databases or logs"
+"$S" export $tmp/A $tmp/E >/dev/null || fail "export into the same export again"
+mkdir $tmp/other; echo x >$tmp/other/file
+"$S" export $tmp/A $tmp/other >$tmp/out 2>&1; [[ $? == 2 ]] && grep -q "is not a study export" $tmp/out || fail "export into a foreign directory: $(cat $tmp/out)"
+"$S" status $tmp/E | grep -Eq "pend1/seed-2 +exported +20/20" || fail "status of an export: $($S status $tmp/E)"
+rm -r $tmp/E/pend2/seed-2
+"$S" run $tmp/plan.toml --out $tmp/C $opts --from-export $tmp/E >$tmp/C.out 2>&1 || { cat $tmp/C.out; fail "study from an export"; }
+grep -q "3 complete runs taken" $tmp/C.out && grep -q "3 of 4 runs complete, 1 to run" $tmp/C.out ||
+  fail "from export: $(cat $tmp/C.out)"
+[[ $(grep -c started $tmp/C.out) == 1 ]] && grep -q "started pend2/seed-2" $tmp/C.out || fail "from export ran: $(cat $tmp/C.out)"
+dump $tmp/A/pend2/seed-2 >$tmp/a.dump; dump $tmp/C/pend2/seed-2 >$tmp/c.dump
+cmp -s $tmp/a.dump $tmp/c.dump || fail "the run made beside an export differs"
+cmp -s $tmp/A/pend1/seed-1/best.json $tmp/C/pend1/seed-1/best.json || fail "taken run's best.json is not the export's"
+# The exported best genome replays to its stored fitness without the run directory.
+best=$(python3 -c "import json;print(repr(json.load(open('$tmp/E/pend1/seed-1/summary.json'))['best_fitness']))")
+"$bin/ahhs-replay" --genome $tmp/E/pend1/seed-1/best.json --scenario pendulum --duration 20 >$tmp/out 2>&1 ||
+  fail "replay of an exported best: $(cat $tmp/out)"
+grep -q "reproduced exactly" $tmp/out || fail "exported best does not reproduce ($best): $(cat $tmp/out)"
+# A plan that changed a configuration: its exported runs are not taken.
+sed 's/^rules = 20$/rules = 21/' $tmp/plan.toml >$tmp/plan2.toml
+"$S" run $tmp/plan2.toml --out $tmp/D $opts --from-export $tmp/E >$tmp/D.out 2>&1 || fail "study D: $(cat $tmp/D.out)"
+grep -q "pend1/seed-1: not taken, its configuration differs" $tmp/D.out || fail "changed config taken: $(cat $tmp/D.out)"
+
+echo "== 5. status"
+"$S" status $tmp/A >$tmp/status || fail "status"
+grep -q "study tiny in $tmp/A: 4 of 4 runs complete, 0 running, 0 failed" $tmp/status || fail "$(cat $tmp/status)"
+grep -Eq "^pend1 +2/2" $tmp/status || fail "$(cat $tmp/status)"
+echo "PASS"

@@ -1,0 +1,398 @@
+// ahhs-study: many runs of ahhs-evolve, described by a study plan (docs/evolution.md, "Studies").
+//   ahhs-study run PLAN --out DIR [--parallel K] [--workers-per-run N] [--from-export EXPORT]
+//   ahhs-study run --resume DIR [...]
+//   ahhs-study status DIR
+//   ahhs-study export DIR EXPORT
+// Exit codes: 0 done, 1 a run or the study failed, 2 bad options or plan, 130 interrupted.
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <thread>
+
+#include "evolver/store/run_store.h"
+#include "tools/launch/episode_runner.h"
+#include "tools/launch/process_arena.h"
+#include "tools/study/study_dir.h"
+
+namespace fs = std::filesystem;
+namespace at = ahhs::tools;
+using nlohmann::json;
+
+namespace {
+
+constexpr int kExitFailed = 1;
+constexpr int kExitUsage = 2;
+constexpr int kExitInterrupted = 130;
+
+std::atomic<int> g_signals{0};
+void OnSignal(int) { g_signals.fetch_add(1); }
+
+std::string Stamp() {
+  char buf[16];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(buf, sizeof buf, "%H:%M:%S", std::localtime(&now));
+  return buf;
+}
+
+std::string Seconds(double s) {
+  char buf[32];
+  if (s < 120)
+    std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else if (s < 7200)
+    std::snprintf(buf, sizeof buf, "%.0f min", s / 60);
+  else
+    std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
+  return buf;
+}
+
+std::string LastLine(const std::string& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  while (std::getline(in, line)) {
+    const auto cr = line.find_last_of('\r');  // progress lines redraw with \r
+    if (cr != std::string::npos) line = line.substr(cr + 1);
+    if (!line.empty()) last = line;
+  }
+  return last;
+}
+
+// ahhs-evolve's resolved configuration (--show-config) of a config file.
+json ResolveConfig(const std::string& evolve, const std::string& config_file) {
+  const std::string command =
+      "'" + evolve + "' --config '" + config_file + "' --seed 1 --show-config 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) throw at::StudyPlanError("cannot run " + evolve);
+  std::string out;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  const int status = pclose(pipe);
+  if (status != 0 || out.empty() || out[0] != '{') {
+    std::string first = out.substr(0, out.find('\n'));
+    throw at::StudyPlanError("ahhs-evolve refuses it: " + first);
+  }
+  return json::parse(out);
+}
+
+// The study directory is run by one ahhs-study at a time.
+class StudyLock {
+ public:
+  explicit StudyLock(const std::string& dir) {
+    const std::string path = dir + "/study.lock";
+    fd_ = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw std::runtime_error("cannot create " + path);
+    if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      close(fd_);
+      throw std::runtime_error(dir + " is in use by another ahhs-study run");
+    }
+  }
+  ~StudyLock() { close(fd_); }
+  StudyLock(const StudyLock&) = delete;
+  StudyLock& operator=(const StudyLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+struct RunOptions {
+  int parallel = 1;
+  int workers_per_run = 0;  // 0: cores / parallel
+  int port_base = 7700;
+  std::string from_export;
+};
+
+struct Running {
+  at::StudyRun run;
+  pid_t pid = -1;
+  std::chrono::steady_clock::time_point started;
+};
+
+// Starts one run's ahhs-evolve (new or resumed). Returns -1 when the run directory stays in use.
+pid_t StartRun(const at::StudyDir& study, const at::StudyRun& run, const RunOptions& options,
+               const std::string& evolve) {
+  const std::string dir = study.RunDir(run);
+  for (int k = 0; ahhs::evolver::RunStore::InUse(dir); ++k) {
+    if (k == 0)
+      std::printf("[%s] waiting for the last process of %s to end\n", Stamp().c_str(),
+                  run.Name().c_str());
+    if (k >= 600 || g_signals > 0) return -1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  std::error_code ec;
+  fs::remove(study.FailedFile(run), ec);
+  fs::create_directories(fs::path(dir).parent_path(), ec);
+  const std::string url = "udpm://239.255.76.67:" + std::to_string(options.port_base + run.index) +
+                          "?ttl=0&recv_buf_size=4194304";
+  std::vector<std::string> argv{evolve};
+  // A run whose database was made (its first export exists) is resumed; anything less is
+  // started again from nothing.
+  if (fs::exists(fs::path(dir) / "generations.csv", ec))
+    argv.insert(argv.end(), {"--resume", dir});
+  else
+    argv.insert(argv.end(), {"--config", study.ConfigFile(run.config), "--seed",
+                             std::to_string(run.seed), "--out", dir, "--overwrite"});
+  argv.insert(argv.end(), {"--workers", std::to_string(options.workers_per_run), "--lcm-url", url});
+  {
+    std::ofstream log(study.LogFile(run), std::ios::app);
+    log << "== ahhs-study " << Stamp() << ":";
+    for (const auto& a : argv) log << ' ' << a;
+    log << '\n';
+  }
+  return ahhs::launch::SpawnChild(argv, false, study.LogFile(run));
+}
+
+int RunStudy(const at::StudyDir& study, RunOptions options) {
+  StudyLock lock(study.dir());
+  const std::string evolve = ahhs::launch::ExecutableDir() + "/ahhs-evolve";
+  if (options.workers_per_run <= 0)
+    options.workers_per_run = std::max(
+        1, static_cast<int>(std::thread::hardware_concurrency()) / std::max(1, options.parallel));
+  if (!options.from_export.empty()) {
+    std::vector<std::string> skipped;
+    const auto taken = study.Import(options.from_export, &skipped);
+    std::printf("from the export %s: %zu complete runs taken\n", options.from_export.c_str(),
+                taken.size());
+    for (const auto& name : skipped)
+      std::printf("  %s: not taken, its configuration differs from this study's\n", name.c_str());
+  }
+  std::vector<at::StudyRun> queue;
+  int complete = 0;
+  const auto runs = study.Runs();
+  for (const auto& run : runs) {
+    if (study.State(run).kind == at::RunStateKind::kComplete)
+      ++complete;
+    else
+      queue.push_back(run);
+  }
+  std::printf(
+      "study %s in %s: %d of %zu runs complete, %zu to run, %d at a time with %d "
+      "workers each\n",
+      study.plan().name.c_str(), study.dir().c_str(), complete, runs.size(), queue.size(),
+      options.parallel, options.workers_per_run);
+  std::fflush(stdout);
+
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  std::vector<Running> running;
+  std::size_t next = 0;
+  int failed = 0;
+  while ((next < queue.size() || !running.empty()) && g_signals == 0) {
+    while (running.size() < static_cast<std::size_t>(options.parallel) && next < queue.size() &&
+           g_signals == 0) {
+      const at::StudyRun& run = queue[next++];
+      pid_t pid = -1;
+      try {
+        pid = StartRun(study, run, options, evolve);
+      } catch (const std::exception& e) {
+        std::ofstream(study.FailedFile(run)) << e.what() << '\n';
+      }
+      if (pid < 0) {
+        if (g_signals > 0) break;
+        std::printf("[%s] %s could not start (its directory stays in use)\n", Stamp().c_str(),
+                    run.Name().c_str());
+        ++failed;
+        continue;
+      }
+      std::printf("[%s] started %s (port %d)\n", Stamp().c_str(), run.Name().c_str(),
+                  options.port_base + run.index);
+      std::fflush(stdout);
+      running.push_back({run, pid, std::chrono::steady_clock::now()});
+    }
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    if (pid <= 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      continue;
+    }
+    const auto it = std::find_if(running.begin(), running.end(),
+                                 [&](const Running& r) { return r.pid == pid; });
+    if (it == running.end()) continue;
+    const Running done = *it;
+    running.erase(it);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - done.started).count();
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+      try {
+        study.WriteSummary(done.run);
+        ++complete;
+        const at::RunState state = study.State(done.run);
+        std::printf("[%s] complete %s: best %.6g after %s; %d of %zu runs complete\n",
+                    Stamp().c_str(), done.run.Name().c_str(), state.best.value_or(0.0),
+                    Seconds(seconds).c_str(), complete, runs.size());
+      } catch (const std::exception& e) {
+        std::ofstream(study.FailedFile(done.run)) << e.what() << '\n';
+        std::printf("[%s] FAILED %s: %s\n", Stamp().c_str(), done.run.Name().c_str(), e.what());
+        ++failed;
+      }
+    } else if (g_signals == 0) {
+      const std::string why =
+          (WIFSIGNALED(status) ? "ahhs-evolve ended by signal " + std::to_string(WTERMSIG(status))
+                               : "ahhs-evolve exited with " + std::to_string(WEXITSTATUS(status))) +
+          ": " + LastLine(study.LogFile(done.run));
+      std::ofstream(study.FailedFile(done.run)) << why << '\n';
+      std::printf("[%s] FAILED %s: %s (log: %s)\n", Stamp().c_str(), done.run.Name().c_str(),
+                  why.c_str(), study.LogFile(done.run).c_str());
+      ++failed;
+    }
+    std::fflush(stdout);
+  }
+  if (g_signals > 0) {
+    std::vector<pid_t> pids;
+    for (const auto& r : running) pids.push_back(r.pid);
+    std::printf("[%s] stopping %zu runs (each keeps its committed generations)\n", Stamp().c_str(),
+                pids.size());
+    std::fflush(stdout);
+    ahhs::launch::StopChildren(&pids, std::chrono::seconds(30));
+    std::printf("stopped; continue with: ahhs-study run --resume %s\n", study.dir().c_str());
+    return kExitInterrupted;
+  }
+  if (failed > 0) {
+    std::printf("%d runs failed (see ahhs-study status %s); run --resume to retry them\n", failed,
+                study.dir().c_str());
+    return kExitFailed;
+  }
+  std::printf("study complete: %zu runs in %s\n", runs.size(), study.dir().c_str());
+  return 0;
+}
+
+int Status(const at::StudyDir& study) {
+  const auto runs = study.Runs();
+  std::map<std::string, std::pair<int, int>> per_config;  // complete, total
+  std::map<std::string, std::vector<double>> run_times;
+  std::size_t width = 3;
+  for (const auto& run : runs) width = std::max(width, run.Name().size());
+  std::vector<std::string> lines;
+  int complete = 0, running = 0, failed = 0;
+  double remaining_running = 0;
+  for (const auto& run : runs) {
+    const at::RunState s = study.State(run);
+    auto& [done, total] = per_config[run.config];
+    ++total;
+    std::string eta = "";
+    if (s.kind == at::RunStateKind::kComplete) {
+      ++done;
+      ++complete;
+      if (!s.exported_only) run_times[run.config].push_back(s.wall_time);
+    } else if (s.kind == at::RunStateKind::kRunning) {
+      ++running;
+      if (s.generations_done > 0) {
+        const double left = s.wall_time / s.generations_done * (s.generations - s.generations_done);
+        remaining_running += left;
+        eta = Seconds(left);
+      }
+    } else if (s.kind == at::RunStateKind::kFailed) {
+      ++failed;
+    }
+    char best[32] = "-";
+    if (s.best) std::snprintf(best, sizeof best, "%.6g", *s.best);
+    char line[512];
+    std::snprintf(line, sizeof line, "%-*s  %-8s  %4d/%-4d  %-10s  %-8s  %s",
+                  static_cast<int>(width), run.Name().c_str(),
+                  s.exported_only ? "exported" : at::RunStateName(s.kind), s.generations_done,
+                  s.generations, best, eta.c_str(), s.note.c_str());
+    lines.push_back(line);
+  }
+  std::printf("study %s in %s: %d of %zu runs complete, %d running, %d failed\n",
+              study.plan().name.c_str(), study.dir().c_str(), complete, runs.size(), running,
+              failed);
+  std::printf("\n%-*s  %-8s  %-9s  %-10s  %-8s\n", static_cast<int>(width), "run", "state", "gens",
+              "best", "ETA");
+  for (const auto& l : lines) std::printf("%s\n", l.c_str());
+  std::printf("\n%-24s  %-9s  %s\n", "configuration", "complete", "mean run time (here)");
+  for (const auto& config : study.plan().configs) {
+    const auto& [done, total] = per_config[config.name];
+    const auto& times = run_times[config.name];
+    double mean = 0;
+    for (double t : times) mean += t;
+    std::printf("%-24s  %4d/%-4d  %s\n", config.name.c_str(), done, total,
+                times.empty() ? "-" : Seconds(mean / static_cast<double>(times.size())).c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"ahhs-study: many ahhs-evolve runs from a study plan, resumable at any moment"};
+  app.require_subcommand(1);
+  std::string plan_file, out_dir, resume_dir, study_dir, export_dir;
+  RunOptions options;
+  CLI::App* run = app.add_subcommand("run", "run (or resume) a study on this machine");
+  run->add_option("plan", plan_file, "study plan (TOML, e.g. studies/paper-2010.toml)");
+  auto* out = run->add_option("--out", out_dir, "new study directory");
+  auto* resume = run->add_option("--resume", resume_dir, "continue the study in this directory");
+  out->excludes(resume);
+  run->add_option("--parallel", options.parallel, "runs at a time")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  run->add_option("--workers-per-run", options.workers_per_run,
+                  "local ahhs-worker processes of each run (default: cores / parallel)")
+      ->check(CLI::Range(1, 256));
+  run->add_option("--port-base", options.port_base,
+                  "run i of the plan uses LCM port BASE + i (ttl=0), so runs never share workers")
+      ->check(CLI::Range(1024, 60000))
+      ->capture_default_str();
+  run->add_option("--from-export", options.from_export,
+                  "take the complete runs of this export (ahhs-study export) instead of running "
+                  "them again");
+  CLI::App* status = app.add_subcommand("status", "per run: state, generation, best, ETA");
+  status->add_option("study", study_dir, "study directory or export")->required();
+  CLI::App* exp = app.add_subcommand(
+      "export",
+      "copy the complete runs' best genome, generations and summary (what a repository "
+      "keeps) into EXPORT");
+  exp->add_option("study", study_dir, "study directory")->required();
+  exp->add_option("export", export_dir, "export directory (new, or an export of this study)")
+      ->required();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitUsage;
+  }
+
+  try {
+    if (*run) {
+      if (resume_dir.empty() == out_dir.empty())
+        throw CLI::ValidationError("give PLAN --out DIR for a new study, or --resume DIR");
+      if (!resume_dir.empty() && !plan_file.empty())
+        throw CLI::ValidationError("--resume takes no plan (the study keeps its own)");
+      if (!out_dir.empty() && plan_file.empty())
+        throw CLI::ValidationError("a new study needs a PLAN");
+      if (!resume_dir.empty()) return RunStudy(at::StudyDir::Open(resume_dir), options);
+      const at::StudyPlan plan = at::LoadStudyPlan(plan_file);
+      const std::string evolve = ahhs::launch::ExecutableDir() + "/ahhs-evolve";
+      const at::StudyDir study = at::StudyDir::Create(
+          out_dir, plan_file, plan, [&](const std::string& f) { return ResolveConfig(evolve, f); });
+      return RunStudy(study, options);
+    }
+    if (*status) return Status(at::StudyDir::Open(study_dir));
+    if (*exp) {
+      const int n = at::StudyDir::Open(study_dir).Export(export_dir);
+      std::printf("exported %d complete runs to %s\n", n, export_dir.c_str());
+      return 0;
+    }
+  } catch (const CLI::ValidationError& e) {
+    std::cerr << "ahhs-study: " << e.what() << '\n';
+    return kExitUsage;
+  } catch (const at::StudyPlanError& e) {
+    std::cerr << "ahhs-study: " << e.what() << '\n';
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    std::cerr << "ahhs-study: " << e.what() << '\n';
+    return kExitFailed;
+  }
+  return 0;
+}

@@ -181,7 +181,7 @@ TEST_CASE("an existing run directory is never overwritten unless asked") {
   CHECK_THROWS_AS(RunStore::Create(tmp.path + "/file", "c", 1, json, false), RunStoreError);
 }
 
-TEST_CASE("a run directory has one writer at a time; readers need no lock") {
+TEST_CASE("a run directory has one writer at a time, and readers need no lock") {
   TempDir tmp;
   const std::string dir = tmp.path + "/run";
   const auto json = evolver::ConfigToJson(SmallConfig());

@@ -54,4 +54,38 @@ class Bus {
   virtual const BusStats& stats() const = 0;
 };
 
+// A subscription that ends itself: destroying (or reset()ting) it unsubscribes, as Drake's
+// DrakeSubscriptionInterface does, so a node that subscribes callbacks on `this` can never be
+// called after it is gone. Movable, not copyable; the bus must outlive it.
+class [[nodiscard]] Subscription {
+ public:
+  Subscription() = default;
+  Subscription(Bus* bus, int id) : bus_(bus), id_(id) {}
+  ~Subscription() { reset(); }
+  Subscription(Subscription&& other) noexcept : bus_(other.bus_), id_(other.id_) {
+    other.bus_ = nullptr;
+  }
+  Subscription& operator=(Subscription&& other) noexcept {
+    if (this != &other) {
+      reset();
+      bus_ = other.bus_;
+      id_ = other.id_;
+      other.bus_ = nullptr;
+    }
+    return *this;
+  }
+  Subscription(const Subscription&) = delete;
+  Subscription& operator=(const Subscription&) = delete;
+
+  void reset() {
+    if (bus_ != nullptr) bus_->Unsubscribe(id_);
+    bus_ = nullptr;
+  }
+  bool active() const { return bus_ != nullptr; }
+
+ private:
+  Bus* bus_ = nullptr;
+  int id_ = -1;
+};
+
 }  // namespace ahhs::bus

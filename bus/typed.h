@@ -63,10 +63,12 @@ inline void ClearForDecode(sim_state_t* m) {
 }
 
 // Subscribes `on_message(const std::string& channel, const Msg& msg)`. `counters` may be null;
-// when given it must outlive the subscription. Returns the subscription id.
+// when given it must outlive the subscription. The subscription lasts as long as the returned
+// handle.
 template <class Msg, class Callback>
-int SubscribeTyped(Bus& bus, const std::string& channel_regex, Callback on_message,
-                   DecodeCounters* counters = nullptr, int queue_capacity = kDefaultQueueCapacity) {
+Subscription SubscribeTyped(Bus& bus, const std::string& channel_regex, Callback on_message,
+                            DecodeCounters* counters = nullptr,
+                            int queue_capacity = kDefaultQueueCapacity) {
   // One message object per subscription, decoded into again and again. `msg` is valid only
   // during the callback (a callback must not handle the bus itself).
   auto handler = [on_message = std::move(on_message), counters, msg = std::make_shared<Msg>()](
@@ -79,7 +81,7 @@ int SubscribeTyped(Bus& bus, const std::string& channel_regex, Callback on_messa
     if (counters != nullptr) ++counters->decoded;
     on_message(channel, *msg);
   };
-  return bus.Subscribe(channel_regex, std::move(handler), queue_capacity);
+  return Subscription(&bus, bus.Subscribe(channel_regex, std::move(handler), queue_capacity));
 }
 
 }  // namespace ahhs::bus

@@ -17,13 +17,13 @@
 
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
+#include "evolver/arena/children.h"
+#include "evolver/arena/process_arena.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/farm/arena_evaluator.h"
 #include "evolver/farm/farm_evaluator.h"
 #include "evolver/store/run_store.h"
 #include "modules/core/random.h"
-#include "tools/launch/episode_runner.h"
-#include "tools/launch/process_arena.h"
 
 namespace ev = ahhs::evolver;
 using Clock = std::chrono::steady_clock;
@@ -120,11 +120,8 @@ class Progress {
   bool drawn_ = false;
 };
 
-struct LocalWorkers {
-  std::vector<pid_t> pids;
-  std::vector<std::vector<std::string>> argv;
-  int restarts = 0;
-};
+// A local worker that dies is started again, this many times per session at most.
+constexpr int kMaxWorkerRestarts = 20;
 
 }  // namespace
 
@@ -218,11 +215,9 @@ int main(int argc, char** argv) {
         return 0;
       }
     } else {
-      config.scenario.kind = ahhs::sim::ParseScenarioKind(scenario);
-      config.scenario.joints = ahhs::sim::ParseJoints(joints);
-      config.scenario.num_modules =
-          config.scenario.kind == ahhs::sim::ScenarioKind::kPendulum ? 2 : modules;
-      config.scenario.duration = duration;
+      config.scenario =
+          ahhs::sim::MakeScenarioConfig(ahhs::sim::ParseScenarioKind(scenario),
+                                        ahhs::sim::ParseJoints(joints), modules, duration);
       config.variant =
           variant == "ahhs1" ? ahhs::modules::Variant::kAhhs1 : ahhs::modules::Variant::kAhhs2;
       config.hormones = hormones;
@@ -271,13 +266,14 @@ int main(int argc, char** argv) {
 
   // Local workers, started before our own bus exists.
   if (workers < 0) workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  LocalWorkers local;
-  const std::string worker_bin = ahhs::launch::ExecutableDir() + "/ahhs-worker";
-  for (int k = 0; k < workers && first < config.ga.generations; ++k) {
-    local.argv.push_back({worker_bin, "--quiet", "--lcm-url", url, "--arena", arena, "--id",
-                          HostName() + ":" + std::to_string(getpid()) + "/w" + std::to_string(k)});
-    local.pids.push_back(ahhs::launch::SpawnChild(local.argv.back(), true));
-  }
+  ahhs::arena::ChildProcesses local;
+  int restarts = 0;
+  const std::string worker_bin = ahhs::arena::ExecutableDir() + "/ahhs-worker";
+  for (int k = 0; k < workers && first < config.ga.generations; ++k)
+    local.Start("local worker " + std::to_string(k),
+                {worker_bin, "--quiet", "--lcm-url", url, "--arena", arena, "--id",
+                 HostName() + ":" + std::to_string(getpid()) + "/w" + std::to_string(k)},
+                true);
 
   Progress progress(first, config.ga.generations);
   std::printf("run directory: %s\n", dir.c_str());
@@ -292,8 +288,8 @@ int main(int argc, char** argv) {
               config.ga.population, config.ga.generations,
               static_cast<unsigned long long>(config.seed),
               first > 0 ? (", resuming at generation " + std::to_string(first)).c_str() : "");
-  std::printf("workers: %d local (%s arena)%s\n", static_cast<int>(local.pids.size()),
-              arena.c_str(), workers == 0 ? ", waiting for external ones" : "");
+  std::printf("workers: %d local (%s arena)%s\n", static_cast<int>(local.size()), arena.c_str(),
+              workers == 0 ? ", waiting for external ones" : "");
   std::fflush(stdout);
 
   int exit_code = 0;
@@ -309,27 +305,21 @@ int main(int argc, char** argv) {
         std::chrono::milliseconds(static_cast<std::int64_t>(worker_wait * 1000));
     int current_generation = first;
     ev::FarmEvaluator::Hooks hooks;
-    hooks.interrupted = [&] {
+    hooks.interrupted = [&] { return g_interrupts > 0; };
+    hooks.poll = [&] {
       // Keep the local workers alive: one that died is started again.
-      for (std::size_t k = 0; k < local.pids.size(); ++k) {
-        int status = 0;
-        if (local.pids[k] > 0 && waitpid(local.pids[k], &status, WNOHANG) == local.pids[k]) {
-          local.pids[k] = -1;
-          if (g_interrupts > 0) continue;
-          if (local.restarts >= 20) {
-            progress.Say("local worker " + std::to_string(k) + " ended; not restarted (" +
-                         std::to_string(local.restarts) + " restarts already)");
-            continue;
-          }
-          progress.Say("local worker " + std::to_string(k) + " ended (" +
-                       (WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status))
-                                            : "exit " + std::to_string(WEXITSTATUS(status))) +
-                       "); its jobs go to other workers; starting it again");
-          ++local.restarts;
-          local.pids[k] = ahhs::launch::SpawnChild(local.argv[k], true);
+      for (const auto& ended : local.Reap()) {
+        if (g_interrupts > 0) continue;
+        if (restarts >= kMaxWorkerRestarts) {
+          progress.Say(ended.name + " ended; not restarted (" + std::to_string(restarts) +
+                       " restarts already)");
+          continue;
         }
+        progress.Say(ended.name + " ended (" + ahhs::arena::DescribeExit(ended.status) +
+                     "); its jobs go to other workers; starting it again");
+        ++restarts;
+        local.Restart(ended.index);
       }
-      return g_interrupts > 0;
     };
     hooks.progress = [&](std::size_t done, std::size_t total) {
       progress.Evaluated(current_generation, done, total);
@@ -365,7 +355,7 @@ int main(int argc, char** argv) {
               << store->LastGeneration() << "; continue with: ahhs-evolve --resume " << dir << '\n';
     exit_code = 2;
   }
-  ahhs::launch::StopChildren(&local.pids, std::chrono::seconds(5));
+  local.StopAll(std::chrono::seconds(5));
   if (exit_code != 0) return exit_code;
 
   // Summary.

@@ -18,10 +18,10 @@
 
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
+#include "evolver/arena/children.h"
+#include "evolver/arena/process_arena.h"
 #include "evolver/farm/arena_evaluator.h"
 #include "evolver/farm/worker_node.h"
-#include "tools/launch/episode_runner.h"
-#include "tools/launch/process_arena.h"
 
 namespace ev = ahhs::evolver;
 
@@ -77,8 +77,8 @@ int main(int argc, char** argv) {
 
   if (slots > 1) {
     // One process per slot (ODE's solver RNG is process-global); this one only supervises.
-    std::vector<pid_t> children;
-    const std::string self = ahhs::launch::ExecutableDir() + "/ahhs-worker";
+    ahhs::arena::ChildProcesses children;
+    const std::string self = ahhs::arena::ExecutableDir() + "/ahhs-worker";
     for (int k = 0; k < slots; ++k) {
       std::vector<std::string> args{
           self,
@@ -91,19 +91,15 @@ int main(int argc, char** argv) {
       if (arena_url_option->count() > 0) args.insert(args.end(), {"--arena-url", arena_url});
       if (verbose) args.push_back("--verbose");
       if (quiet) args.push_back("--quiet");
-      children.push_back(ahhs::launch::SpawnChild(args, false));
+      children.Start("slot " + std::to_string(k), args, false);
     }
     if (!quiet) std::cerr << "ahhs-worker: " << slots << " worker processes on " << host << '\n';
     while (!g_stop) {
-      bool any = false;
-      for (pid_t& pid : children) {
-        if (pid > 0 && waitpid(pid, nullptr, WNOHANG) == pid) pid = -1;
-        if (pid > 0) any = true;
-      }
-      if (!any) break;
+      children.Reap();
+      if (children.running() == 0) break;
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
-    ahhs::launch::StopChildren(&children, std::chrono::seconds(5));
+    children.StopAll(std::chrono::seconds(5));
     return 0;
   }
 
@@ -115,8 +111,11 @@ int main(int argc, char** argv) {
     return 1;
   }
   try {
-    ev::ArenaEvaluator evaluator(ev::ParseArenaKind(arena), arena_url,
-                                 "W" + std::to_string(getpid()));
+    ahhs::arena::ArenaOptions arena_options;
+    arena_options.kind = ahhs::arena::ParseArenaKind(arena);
+    arena_options.url = arena_url;
+    arena_options.name = "W" + std::to_string(getpid());
+    ev::ArenaEvaluator evaluator(arena_options);
     auto bus = ahhs::bus::MakeBus(url);
     ev::WorkerNode node(bus.get(), id, host, [&](const ev::EvalJob& job) {
       ev::EvalOutcome out = evaluator.Evaluate(job);

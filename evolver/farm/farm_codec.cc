@@ -1,10 +1,10 @@
 #include "evolver/farm/farm_codec.h"
 
-#include <ahhs/sim_control_t.hpp>
 #include <limits>
 
 #include "bus/channels.h"
 #include "modules/node/genome_codec.h"
+#include "sim/node/sim_codec.h"
 
 namespace ahhs::evolver {
 
@@ -16,11 +16,7 @@ eval_request_t RequestMessage(const EvalJob& job) {
   m.job = job.job;
   m.attempt = job.attempt;
   m.worker = job.worker;
-  m.scenario = sim::ScenarioName(job.config.kind);
-  m.num_modules = job.config.num_modules;
-  m.joints = job.config.joints == sim::Joints::kFixed ? sim_control_t::JOINTS_FIXED
-                                                      : sim_control_t::JOINTS_DAMPED;
-  m.duration = job.config.duration;
+  sim::ScenarioToWire(job.config, &m);
   m.seed = static_cast<std::int64_t>(job.seed);
   m.deadline_utime = job.deadline_utime;
   m.genome = modules::GenomeMessage(job.genome, job.job);
@@ -34,18 +30,7 @@ std::string JobFromMessage(const eval_request_t& m, EvalJob* out) {
   job.job = m.job;
   job.attempt = m.attempt;
   job.worker = m.worker;
-  try {
-    job.config.kind = sim::ParseScenarioKind(m.scenario);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  if (m.joints != sim_control_t::JOINTS_DAMPED && m.joints != sim_control_t::JOINTS_FIXED)
-    return "unknown joints " + std::to_string(m.joints);
-  job.config.joints =
-      m.joints == sim_control_t::JOINTS_FIXED ? sim::Joints::kFixed : sim::Joints::kDamped;
-  job.config.num_modules = m.num_modules;
-  job.config.duration = m.duration;
-  const std::string config_error = sim::CheckConfig(job.config);
+  const std::string config_error = sim::ScenarioFromWire(m, &job.config);
   if (!config_error.empty()) return config_error;
   job.seed = static_cast<std::uint64_t>(m.seed);
   job.deadline_utime = m.deadline_utime;

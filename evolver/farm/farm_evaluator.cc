@@ -21,9 +21,7 @@ FarmEvaluator::FarmEvaluator(bus::Bus* bus, FarmOptions options, Hooks hooks)
       [this](const std::string&, const eval_result_t& m) { OnResult(m); }, &counters_.results));
 }
 
-FarmEvaluator::~FarmEvaluator() {
-  for (int id : subscriptions_) bus_->Unsubscribe(id);
-}
+FarmEvaluator::~FarmEvaluator() = default;
 
 void FarmEvaluator::OnStatus(const worker_status_t& msg) {
   if (msg.protocol_version != kFarmProtocolVersion) {
@@ -64,6 +62,7 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
   auto last_worker_seen = FarmClock::now();
   std::size_t last_done = 0;
   while (!table.AllDone()) {
+    hooks_.poll();
     if (hooks_.interrupted()) throw FarmInterrupted();
     const auto now = FarmClock::now();
     // Feed what the workers said into the lease table.

@@ -55,10 +55,12 @@ struct FarmCounters {
 
 class FarmEvaluator : public FitnessEvaluator {
  public:
-  // `interrupted()` is asked every loop (Ctrl-C); `progress(done, total)` after every result;
+  // `interrupted()` is asked every loop (Ctrl-C); `poll()` is called every loop for the owner's
+  // housekeeping (e.g. restarting local workers); `progress(done, total)` after every result;
   // `report(text)` gets one line per notable event (refused worker, re-issue, invalid result).
   struct Hooks {
     std::function<bool()> interrupted = [] { return false; };
+    std::function<void()> poll = [] {};
     std::function<void(std::size_t, std::size_t)> progress = [](std::size_t, std::size_t) {};
     std::function<void(const std::string&)> report = [](const std::string&) {};
   };
@@ -90,7 +92,7 @@ class FarmEvaluator : public FitnessEvaluator {
   FarmOptions options_;
   Hooks hooks_;
   FarmCounters counters_;
-  std::vector<int> subscriptions_;
+  std::vector<bus::Subscription> subscriptions_;
   std::map<std::string, WorkerSeen> seen_;  // latest status of every compatible worker
   std::map<std::string, std::string> known_;
   std::set<std::string> refused_;

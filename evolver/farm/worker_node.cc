@@ -21,7 +21,7 @@ WorkerNode::WorkerNode(bus::Bus* bus, std::string id, std::string host, Evaluate
   PublishStatus();
 }
 
-WorkerNode::~WorkerNode() { bus_->Unsubscribe(subscription_); }
+WorkerNode::~WorkerNode() = default;
 
 void WorkerNode::OnRequest(const eval_request_t& msg) {
   if (msg.worker != id_) return;  // addressed to another worker

@@ -61,7 +61,7 @@ class WorkerNode {
   // (run, job, attempt) already taken: a repeated request is not evaluated twice.
   std::set<std::tuple<std::string, std::int64_t, int>> seen_;
   WorkerCounters counters_;
-  int subscription_ = -1;
+  bus::Subscription subscription_;
 };
 
 }  // namespace ahhs::evolver

@@ -2,35 +2,21 @@
 
 #include <cmath>
 
-#include "sim/core/constants.h"
+#include "sim/node/sim_codec.h"
 
 namespace ahhs::evolver {
 
-double ControlPeriod(sim::ScenarioKind kind) {
-  return kind == sim::ScenarioKind::kPendulum ? sim::PendulumConstants{}.control_period
-                                              : sim::GaitConstants{}.control_period;
-}
-
-std::int64_t EpisodeTicks(sim::ScenarioKind kind, double duration) {
-  if (kind == sim::ScenarioKind::kPendulum) {
-    const sim::PendulumConstants k;
-    return duration > 0 ? std::llround(duration / k.control_period) : k.ticks;
-  }
-  const sim::GaitConstants k;
-  return std::llround((duration > 0 ? duration : k.duration) / k.control_period);
-}
-
 FitnessNode::FitnessNode(bus::Bus* bus, std::string arena)
     : bus_(bus), channels_(std::move(arena)) {
-  bus::SubscribeTyped<sim_control_t>(
+  subscriptions_.push_back(bus::SubscribeTyped<sim_control_t>(
       *bus_, channels_.SimControl(),
-      [this](const std::string&, const sim_control_t& m) { OnControl(m); }, &counters_);
-  bus::SubscribeTyped<sim_state_t>(
+      [this](const std::string&, const sim_control_t& m) { OnControl(m); }, &counters_));
+  subscriptions_.push_back(bus::SubscribeTyped<sim_state_t>(
       *bus_, channels_.SimState(), [this](const std::string&, const sim_state_t& m) { OnState(m); },
-      &counters_);
-  bus::SubscribeTyped<sim_clock_t>(
+      &counters_));
+  subscriptions_.push_back(bus::SubscribeTyped<sim_clock_t>(
       *bus_, channels_.SimClock(), [this](const std::string&, const sim_clock_t& m) { OnClock(m); },
-      &counters_);
+      &counters_));
 }
 
 void FitnessNode::OnControl(const sim_control_t& m) {
@@ -39,19 +25,14 @@ void FitnessNode::OnControl(const sim_control_t& m) {
     if (!final_) bus::PublishTyped(*bus_, channels_.Fitness(), Message(false, fitness_t::OK, ""));
     return;
   }
-  sim::ScenarioKind kind;
-  if (m.scenario == "gait") {
-    kind = sim::ScenarioKind::kGait;
-  } else if (m.scenario == "pendulum") {
-    kind = sim::ScenarioKind::kPendulum;
-  } else {
+  sim::ScenarioConfig config;
+  if (!sim::ConfigFromReset(m, &config).empty()) {
     ++dropped_;
     return;
   }
   episode_ = m.episode;
-  kind_ = kind;
-  expected_ticks_ = EpisodeTicks(kind, m.duration);
-  monitor_ = std::make_unique<FitnessMonitor>(kind, ControlPeriod(kind), expected_ticks_);
+  shape_ = sim::ShapeOf(config);
+  monitor_ = std::make_unique<FitnessMonitor>(config.kind, shape_.control_period, shape_.ticks);
   final_.reset();
   next_report_ = 1.0;
   last_tick_ = 0;
@@ -89,7 +70,7 @@ fitness_t FitnessNode::Message(bool is_final, std::int8_t status, const std::str
   f.utime = bus::NowUtime();
   f.episode = episode_;
   f.tick = last_tick_;
-  f.sim_time = static_cast<double>(monitor_->ticks_seen()) * ControlPeriod(kind_);
+  f.sim_time = static_cast<double>(monitor_->ticks_seen()) * shape_.control_period;
   f.fitness = monitor_->fitness();
   f.cost = monitor_->cost();
   f.is_final = is_final;

@@ -38,18 +38,12 @@ class FitnessNode {
   bus::DecodeCounters counters_;
   std::uint64_t dropped_ = 0;
   std::int64_t episode_ = 0;
-  sim::ScenarioKind kind_ = sim::ScenarioKind::kGait;
-  std::int64_t expected_ticks_ = 0;
+  sim::ScenarioShape shape_;
   std::unique_ptr<FitnessMonitor> monitor_;
   std::optional<fitness_t> final_;
   double next_report_ = 1.0;
   std::int64_t last_tick_ = 0;
+  std::vector<bus::Subscription> subscriptions_;  // last: destroyed first
 };
-
-// Seconds per controller tick of a task (sim/core/constants.h).
-double ControlPeriod(sim::ScenarioKind kind);
-
-// Ticks of an episode as a RESET describes it (duration 0 = the task's default).
-std::int64_t EpisodeTicks(sim::ScenarioKind kind, double duration);
 
 }  // namespace ahhs::evolver

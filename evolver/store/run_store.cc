@@ -5,13 +5,13 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "bus/channels.h"
 #include "modules/core/genome_json.h"
 
 namespace ahhs::evolver {
@@ -95,6 +95,13 @@ class Statement {
   sqlite3* db_;
   sqlite3_stmt* stmt_ = nullptr;
 };
+
+// Microseconds since the Unix epoch (the store's timestamps, as on the wire).
+std::int64_t NowUtime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
 
 // SQLite integers are signed 64-bit; seeds are unsigned: store the same bits.
 std::int64_t ToSql(std::uint64_t v) { return static_cast<std::int64_t>(v); }
@@ -217,7 +224,7 @@ std::unique_ptr<RunStore> RunStore::Create(const std::string& dir, const std::st
     put.Bind(1, std::string("run_id")).Bind(2, run_id).Run();
     put.Bind(1, std::string("seed")).Bind(2, std::to_string(run_seed)).Run();
     put.Bind(1, std::string("config")).Bind(2, config.dump()).Run();
-    put.Bind(1, std::string("created_utime")).Bind(2, std::to_string(bus::NowUtime())).Run();
+    put.Bind(1, std::string("created_utime")).Bind(2, std::to_string(NowUtime())).Run();
     store->Exec("COMMIT");
   }
   store->LoadRunTable();
@@ -273,7 +280,7 @@ void RunStore::LoadRunTable() {
 
 int RunStore::BeginSession(const std::string& command_line) {
   Statement add(db_, "INSERT INTO sessions(started_utime, command) VALUES(?, ?)");
-  add.Bind(1, bus::NowUtime()).Bind(2, command_line).Run();
+  add.Bind(1, NowUtime()).Bind(2, command_line).Run();
   return static_cast<int>(sqlite3_last_insert_rowid(db_));
 }
 
@@ -368,7 +375,7 @@ void RunStore::CommitGeneration(const GenerationRecord& record,
         .Bind(6, static_cast<std::int64_t>(record.stats.best_index))
         .Bind(7, record.wall_time)
         .Bind(8, static_cast<std::int64_t>(record.session))
-        .Bind(9, bus::NowUtime())
+        .Bind(9, NowUtime())
         .Run();
     Statement add(db_,
                   "INSERT INTO individuals(generation, idx, genome, genome_hash, elite, "

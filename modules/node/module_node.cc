@@ -16,18 +16,18 @@ ModuleNode::ModuleNode(bus::Bus* bus, ModuleNodeOptions options)
       hormone_channel_(channels_.Hormone(options_.id)),
       hinge_channel_(channels_.Hinge(options_.id)),
       status_channel_(channels_.Status(options_.id)) {
-  bus::SubscribeTyped<genome_t>(
+  subscriptions_.push_back(bus::SubscribeTyped<genome_t>(
       *bus_, channels_.Genome(), [this](const std::string&, const genome_t& m) { OnGenome(m); },
-      &counters_);
-  bus::SubscribeTyped<topology_t>(
+      &counters_));
+  subscriptions_.push_back(bus::SubscribeTyped<topology_t>(
       *bus_, channels_.Topology(),
-      [this](const std::string&, const topology_t& m) { OnTopology(m); }, &counters_);
-  bus::SubscribeTyped<module_sensors_t>(
+      [this](const std::string&, const topology_t& m) { OnTopology(m); }, &counters_));
+  subscriptions_.push_back(bus::SubscribeTyped<module_sensors_t>(
       *bus_, channels_.Sensors(options_.id),
-      [this](const std::string&, const module_sensors_t& m) { OnSensors(m); }, &counters_);
-  bus::SubscribeTyped<sim_clock_t>(
+      [this](const std::string&, const module_sensors_t& m) { OnSensors(m); }, &counters_));
+  subscriptions_.push_back(bus::SubscribeTyped<sim_clock_t>(
       *bus_, channels_.SimClock(), [this](const std::string&, const sim_clock_t& m) { OnClock(m); },
-      &counters_);
+      &counters_));
   next_heartbeat_ = Clock::now();
 }
 
@@ -238,8 +238,7 @@ void ModuleNode::SyncHormoneSubscriptions() {
     if (std::binary_search(neighbours_.begin(), neighbours_.end(), it->first)) {
       ++it;
     } else {
-      bus_->Unsubscribe(it->second);
-      it = hormone_subscriptions_.erase(it);
+      it = hormone_subscriptions_.erase(it);  // unsubscribes
     }
   }
   for (int n : neighbours_) {

@@ -84,10 +84,10 @@ class ModuleNode {
   std::uint64_t genome_hash_ = 0;
   std::optional<CompartmentState> state_;
   bool have_topology_ = false;
-  std::vector<int> neighbours_;               // sorted ids
-  std::map<int, int> hormone_subscriptions_;  // neighbour id -> bus subscription id
-  hormone_packet_t hormone_packet_;           // reused for publishing (no allocation per tick)
-  hinge_command_t hinge_command_;             // likewise
+  std::vector<int> neighbours_;                             // sorted ids
+  std::map<int, bus::Subscription> hormone_subscriptions_;  // by neighbour id
+  hormone_packet_t hormone_packet_;  // reused for publishing (no allocation per tick)
+  hinge_command_t hinge_command_;    // likewise
   // This module's channels, built once (a name built per message costs an allocation).
   std::string hormone_channel_, hinge_channel_, status_channel_;
   bool announce_ready_ = false;  // READY goes out from Process(), after subscribing
@@ -99,6 +99,8 @@ class ModuleNode {
   std::unique_ptr<bool[]> sensor_present_, actuator_present_;  // masks of the current tick
   Clock::time_point next_heartbeat_;
   std::int8_t status_ = 0;
+  // Last: destroyed first, so no callback outlives the members it uses.
+  std::vector<bus::Subscription> subscriptions_;
 };
 
 }  // namespace ahhs::modules

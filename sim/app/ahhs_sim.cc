@@ -119,13 +119,10 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    as::ScenarioConfig config;
-    config.kind = as::ParseScenarioKind(scenario);
-    config.joints = as::ParseJoints(joints);
-    config.num_modules = config.kind == as::ScenarioKind::kPendulum ? 2 : modules;
     if (app.count("--duration") && !(duration > 0))
       throw std::invalid_argument("--duration must be a positive number of seconds");
-    config.duration = duration;
+    as::ScenarioConfig config = as::MakeScenarioConfig(as::ParseScenarioKind(scenario),
+                                                       as::ParseJoints(joints), modules, duration);
     if (config.kind == as::ScenarioKind::kGait && modules < 2)
       throw std::invalid_argument("--modules: a gait organism needs at least 2 modules");
     const as::DriveKind drive_kind = as::ParseDrive(drive);

@@ -81,8 +81,8 @@ double GaitFitness(double displacement, const GaitConstants& k) {
 GaitScenario::GaitScenario(const ScenarioConfig& config, GaitConstants constants)
     : k_(constants), num_modules_(config.num_modules), joints_(config.joints) {
   InitOdeOnce();
-  const double duration = config.duration > 0 ? config.duration : k_.duration;
-  total_ticks_ = static_cast<std::int64_t>(std::llround(duration / k_.control_period));
+  total_ticks_ = EpisodeTicks(config.duration, k_.control_period,
+                              EpisodeTicks(k_.duration, k_.control_period, 0));
   Reset(0);
 }
 

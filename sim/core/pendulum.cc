@@ -18,9 +18,7 @@ double PendulumFitness(double cost, std::int64_t ticks) {
 
 PendulumScenario::PendulumScenario(const ScenarioConfig& config, PendulumConstants constants)
     : k_(constants) {
-  total_ticks_ = config.duration > 0
-                     ? static_cast<std::int64_t>(std::llround(config.duration / k_.control_period))
-                     : k_.ticks;
+  total_ticks_ = EpisodeTicks(config.duration, k_.control_period, k_.ticks);
   Reset(0);
 }
 

@@ -36,6 +36,35 @@ std::string CheckConfig(const ScenarioConfig& c) {
   return "";
 }
 
+std::int64_t EpisodeTicks(double duration, double control_period, std::int64_t default_ticks) {
+  return duration > 0 ? static_cast<std::int64_t>(std::llround(duration / control_period))
+                      : default_ticks;
+}
+
+ScenarioShape ShapeOf(const ScenarioConfig& config) {
+  ScenarioShape shape;
+  if (config.kind == ScenarioKind::kPendulum) {
+    const PendulumConstants k;
+    shape = {2, kPendulumSensors, 2, k.control_period, 0};
+    shape.ticks = EpisodeTicks(config.duration, k.control_period, k.ticks);
+  } else {
+    const GaitConstants k;
+    shape = {config.num_modules, kGaitSensors, 1, k.control_period, 0};
+    shape.ticks = EpisodeTicks(config.duration, k.control_period,
+                               EpisodeTicks(k.duration, k.control_period, 0));
+  }
+  return shape;
+}
+
+ScenarioConfig MakeScenarioConfig(ScenarioKind kind, Joints joints, int modules, double duration) {
+  ScenarioConfig config;
+  config.kind = kind;
+  config.joints = joints;
+  config.num_modules = kind == ScenarioKind::kPendulum ? 2 : modules;
+  config.duration = duration;
+  return config;
+}
+
 std::unique_ptr<Scenario> MakeScenario(const ScenarioConfig& config) {
   const std::string error = CheckConfig(config);
   if (!error.empty()) throw std::invalid_argument(error);

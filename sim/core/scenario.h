@@ -32,6 +32,23 @@ const char* JointsName(Joints joints);
 // Checks a config; returns "" or a message naming the bad field.
 std::string CheckConfig(const ScenarioConfig& config);
 
+// What a configuration's organism and episode look like, without building its world: the one
+// home of these facts for the sim, the fitness monitor, the arenas and the evolver.
+struct ScenarioShape {
+  int compartments = 0;       // modules (the pendulum: always 2)
+  int sensors = 0;            // sensor slots per compartment
+  int actuators = 0;          // actuator slots per compartment
+  double control_period = 0;  // seconds per tick
+  std::int64_t ticks = 0;     // ticks of a full episode
+};
+ScenarioShape ShapeOf(const ScenarioConfig& config);
+
+// Ticks of an episode of `duration` simulated seconds (0: `default_ticks`).
+std::int64_t EpisodeTicks(double duration, double control_period, std::int64_t default_ticks);
+
+// A configuration from tool options: the pendulum ignores `modules` (it always has 2).
+ScenarioConfig MakeScenarioConfig(ScenarioKind kind, Joints joints, int modules, double duration);
+
 // Pose and size of one rigid body, world frame (x along the initial chain, z up), metres.
 struct BodyState {
   int module = -1;  // compartment the body belongs to; -1 = scenery

@@ -94,29 +94,41 @@ topology_t TopologyMessage(const Scenario& scenario, std::int64_t episode) {
   return m;
 }
 
-std::string ConfigFromReset(const sim_control_t& reset, ScenarioConfig* config) {
+std::int8_t JointsToWire(Joints joints) {
+  return joints == Joints::kFixed ? sim_control_t::JOINTS_FIXED : sim_control_t::JOINTS_DAMPED;
+}
+
+std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_modules,
+                               std::int8_t joints, double duration, ScenarioConfig* config) {
   ScenarioConfig c;
-  if (reset.scenario == "gait") {
+  if (scenario == "gait") {
     c.kind = ScenarioKind::kGait;
-  } else if (reset.scenario == "pendulum") {
+  } else if (scenario == "pendulum") {
     c.kind = ScenarioKind::kPendulum;
   } else {
-    return "unknown scenario '" + reset.scenario + "'";
+    return "unknown scenario '" + scenario + "'";
   }
-  c.num_modules = c.kind == ScenarioKind::kPendulum ? 2 : reset.num_modules;
-  if (reset.joints == sim_control_t::JOINTS_DAMPED) {
+  if (joints == sim_control_t::JOINTS_DAMPED) {
     c.joints = Joints::kDamped;
-  } else if (reset.joints == sim_control_t::JOINTS_FIXED) {
+  } else if (joints == sim_control_t::JOINTS_FIXED) {
     c.joints = Joints::kFixed;
   } else {
-    return "unknown joints value " + std::to_string(reset.joints);
+    return "unknown joints value " + std::to_string(joints);
   }
-  c.duration = reset.duration;
+  c = MakeScenarioConfig(c.kind, c.joints, num_modules, duration);
+  const std::string error = CheckConfig(c);
+  if (!error.empty()) return error;
+  *config = c;
+  return "";
+}
+
+std::string ConfigFromReset(const sim_control_t& reset, ScenarioConfig* config) {
+  ScenarioConfig c;
+  const std::string error = ScenarioFromWire(reset, &c);
+  if (!error.empty()) return error;
   if (reset.clock_mode != sim_control_t::MODE_LOCKSTEP &&
       reset.clock_mode != sim_control_t::MODE_REALTIME)
     return "unknown clock mode " + std::to_string(reset.clock_mode);
-  const std::string error = CheckConfig(c);
-  if (!error.empty()) return error;
   *config = c;
   return "";
 }

@@ -30,6 +30,24 @@ topology_t TopologyMessage(const Scenario& scenario, std::int64_t episode);
 void KeepMovingBodies(std::vector<BodyState>* bodies);
 void KeepStaticBodies(std::vector<BodyState>* bodies);
 
+// The one wire form of a ScenarioConfig: the fields (scenario, num_modules, joints, duration)
+// that sim_control_t (RESET) and eval_request_t both carry.
+std::int8_t JointsToWire(Joints joints);
+// Checks the four fields and makes the config; returns "" or why they are refused.
+std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_modules,
+                               std::int8_t joints, double duration, ScenarioConfig* config);
+template <class Message>
+void ScenarioToWire(const ScenarioConfig& config, Message* m) {
+  m->scenario = ScenarioName(config.kind);
+  m->num_modules = ShapeOf(config).compartments;
+  m->joints = JointsToWire(config.joints);
+  m->duration = config.duration;
+}
+template <class Message>
+std::string ScenarioFromWire(const Message& m, ScenarioConfig* config) {
+  return ScenarioFromFields(m.scenario, m.num_modules, m.joints, m.duration, config);
+}
+
 // Validates a RESET and turns it into a scenario config; returns "" or why it is refused.
 std::string ConfigFromReset(const sim_control_t& reset, ScenarioConfig* config);
 

@@ -33,7 +33,7 @@ SimNode::SimNode(bus::Bus* bus, SimNodeOptions options)
       clock_channel_(channels_.SimClock()),
       state_channel_(channels_.SimState()),
       scene_channel_(channels_.SimScene()) {
-  bus::SubscribeTyped<sim_control_t>(
+  control_subscription_ = bus::SubscribeTyped<sim_control_t>(
       *bus_, channels_.SimControl(),
       [this](const std::string&, const sim_control_t& m) { OnControl(m); }, &control_counters_);
 }
@@ -45,8 +45,7 @@ void SimNode::SyncHingeSubscriptions(int n) {
     hinge_channels_.push_back(channels_.Hinge(module));
   }
   while (static_cast<int>(hinge_subscriptions_.size()) > n) {
-    bus_->Unsubscribe(hinge_subscriptions_.back());
-    hinge_subscriptions_.pop_back();
+    hinge_subscriptions_.pop_back();  // unsubscribes
   }
   while (static_cast<int>(hinge_subscriptions_.size()) < n) {
     const int module = static_cast<int>(hinge_subscriptions_.size());

@@ -90,7 +90,8 @@ class SimNode {
   SimNodeOptions options_;
   bus::ArenaChannels channels_;
   bus::DecodeCounters control_counters_, hinge_counters_;
-  std::vector<int> hinge_subscriptions_;  // bus subscription id per module
+  bus::Subscription control_subscription_;
+  std::vector<bus::Subscription> hinge_subscriptions_;  // one per module
   // Channel names used every tick, built once (a name built per message costs an allocation).
   std::vector<std::string> sensors_channels_, hinge_channels_;
   std::string clock_channel_, state_channel_, scene_channel_;

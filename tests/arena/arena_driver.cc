@@ -1,4 +1,4 @@
-// Plays the launcher (launch::RunEpisode) for separately started ahhs-sim, ahhs-module and
+// Plays the launcher (arena::RunEpisode) for separately started ahhs-sim, ahhs-module and
 // ahhs-fitness processes; prints the monitor's fitness ("monitor fitness X") and, in lockstep,
 // the in-process reference fitness of the same genome and seed ("fitness X"), which
 // tests/arena/multiprocess_arena.sh compares with what the sim process reports.
@@ -15,10 +15,11 @@
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
+#include "evolver/arena/episode.h"
+#include "evolver/arena/launcher_role.h"
 #include "modules/core/variation.h"
 #include "modules/node/genome_codec.h"
 #include "tests/arena/direct_loop.h"
-#include "tools/launch/episode_runner.h"
 
 using namespace ahhs;
 using Clock = std::chrono::steady_clock;
@@ -47,14 +48,14 @@ int main(int argc, char** argv) {
       rng);
   auto bus_ptr = bus::MakeBus(url);  // honours AHHS_FAULT_DROP like every process
   bus::Bus& bus = *bus_ptr;
-  launch::EpisodeSpec spec;
+  arena::EpisodeSpec spec;
   spec.config = testing::ConfigOf(e);
   spec.genome = genome;
   spec.seed = e.seed;
   spec.episode = 777;
   spec.realtime = realtime;
   spec.arena = arena;
-  const auto result = launch::RunEpisode(
+  const auto result = arena::RunEpisode(
       bus, spec, [&](std::chrono::microseconds w) { bus.Handle(w); },
       [](std::string*) { return true; });
   if (!result.ok) {

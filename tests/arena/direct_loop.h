@@ -3,9 +3,10 @@
 
 #include <string>
 
+#include "evolver/arena/direct_arena.h"
+#include "evolver/arena/episode.h"
 #include "modules/core/genome.h"
 #include "sim/core/scenario.h"
-#include "tools/launch/episode_runner.h"
 
 namespace ahhs::testing {
 
@@ -24,13 +25,13 @@ inline sim::ScenarioConfig ConfigOf(const Episode& e) {
   return c;
 }
 
-// The reference: scenario and organism stepped directly (launch::RunDirect).
+// The reference: scenario and organism stepped directly (arena::RunDirect).
 inline double DirectFitness(const Episode& e, const modules::Genome& genome) {
-  launch::EpisodeSpec spec;
+  arena::EpisodeSpec spec;
   spec.config = ConfigOf(e);
   spec.genome = genome;
   spec.seed = e.seed;
-  return launch::RunDirect(spec);
+  return arena::RunDirect(spec);
 }
 
 }  // namespace ahhs::testing

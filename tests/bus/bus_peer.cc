@@ -61,7 +61,7 @@ int Responder(ahhs::bus::Bus& bus, int burst) {
   bool finished = false;
   std::set<std::int64_t> burst_ticks;
   int burst_bad = 0;
-  ahhs::bus::SubscribeTyped<ahhs::hinge_command_t>(
+  auto subscription_64 = ahhs::bus::SubscribeTyped<ahhs::hinge_command_t>(
       bus, kPing, [&](const std::string&, const ahhs::hinge_command_t& m) {
         got_ping = true;
         ahhs::hormone_packet_t pong{};
@@ -74,14 +74,14 @@ int Responder(ahhs::bus::Bus& bus, int burst) {
         pong.amounts = {m.values[0] * 2.0, static_cast<double>(m.module)};
         ahhs::bus::PublishTyped(bus, kPong, pong);
       });
-  ahhs::bus::SubscribeTyped<ahhs::hinge_command_t>(
+  auto subscription_77 = ahhs::bus::SubscribeTyped<ahhs::hinge_command_t>(
       bus, kBurst,
       [&](const std::string&, const ahhs::hinge_command_t& m) {
         if (m.values.size() != 1 || m.values[0] != Command(m.tick).values[0]) ++burst_bad;
         if (!burst_ticks.insert(m.tick).second) ++burst_bad;  // duplicate
       },
       nullptr, burst + 100);
-  ahhs::bus::SubscribeTyped<ahhs::sim_control_t>(
+  auto subscription_84 = ahhs::bus::SubscribeTyped<ahhs::sim_control_t>(
       bus, kBurstEnd, [&](const std::string&, const ahhs::sim_control_t&) {
         ahhs::module_status_t s{};
         s.tick = static_cast<std::int64_t>(burst_ticks.size());
@@ -111,14 +111,14 @@ int Responder(ahhs::bus::Bus& bus, int burst) {
 
 int Initiator(ahhs::bus::Bus& bus, int pings, int burst) {
   bool ready = false;
-  ahhs::bus::SubscribeTyped<ahhs::module_status_t>(
+  auto subscription_114 = ahhs::bus::SubscribeTyped<ahhs::module_status_t>(
       bus, kReady, [&](const std::string&, const ahhs::module_status_t&) { ready = true; });
   std::vector<ahhs::hormone_packet_t> pongs;
-  ahhs::bus::SubscribeTyped<ahhs::hormone_packet_t>(
+  auto subscription_117 = ahhs::bus::SubscribeTyped<ahhs::hormone_packet_t>(
       bus, kPong, [&](const std::string&, const ahhs::hormone_packet_t& m) { pongs.push_back(m); });
   bool have_summary = false;
   ahhs::module_status_t summary{};
-  ahhs::bus::SubscribeTyped<ahhs::module_status_t>(
+  auto subscription_121 = ahhs::bus::SubscribeTyped<ahhs::module_status_t>(
       bus, kSummary, [&](const std::string&, const ahhs::module_status_t& m) {
         summary = m;
         have_summary = true;

@@ -141,3 +141,31 @@ TEST_CASE("inproc: bad expressions and URLs are clear errors", "[bus][inproc]") 
   CHECK_FALSE(ahhs::bus::IsInProcessUrl("udpm://239.255.76.67:7667?ttl=0"));
   CHECK(bus.Handle(1ms) == 0);  // idle: waits, then returns nothing
 }
+
+TEST_CASE("a Subscription handle unsubscribes when destroyed or reset, and moves without loss",
+          "[bus][inproc]") {
+  InProcessBus bus;
+  int calls = 0;
+  auto count = [&](const std::string&, const std::uint8_t*, std::size_t) { ++calls; };
+  {
+    ahhs::bus::Subscription scoped(&bus, bus.Subscribe("A", count));
+    PublishText(bus, "A", "x");
+    bus.Handle(0us);
+    CHECK(calls == 1);
+  }
+  PublishText(bus, "A", "x");
+  bus.Handle(0us);
+  CHECK(calls == 1);  // the handle is gone: so is the subscription
+
+  ahhs::bus::Subscription first(&bus, bus.Subscribe("A", count));
+  ahhs::bus::Subscription moved = std::move(first);
+  CHECK_FALSE(first.active());
+  CHECK(moved.active());
+  PublishText(bus, "A", "x");
+  bus.Handle(0us);
+  CHECK(calls == 2);  // the move kept it, exactly once
+  moved.reset();
+  PublishText(bus, "A", "x");
+  bus.Handle(0us);
+  CHECK(calls == 2);
+}

@@ -26,7 +26,7 @@ TEST_CASE("typed round trip in one process", "[bus]") {
       ahhs::bus::DecodeCounters counters;
       std::vector<ahhs::hormone_packet_t> got;
       std::vector<std::string> channels;
-      ahhs::bus::SubscribeTyped<ahhs::hormone_packet_t>(
+      auto subscription_29 = ahhs::bus::SubscribeTyped<ahhs::hormone_packet_t>(
           bus, "AHHS/MODULE[0-9]+/HORMONE",
           [&](const std::string& channel, const ahhs::hormone_packet_t& msg) {
             channels.push_back(channel);
@@ -60,7 +60,7 @@ TEST_CASE("garbage on a typed channel is counted and dropped", "[bus]") {
       auto& bus = *owner;
       ahhs::bus::DecodeCounters counters;
       int delivered = 0;
-      ahhs::bus::SubscribeTyped<ahhs::module_sensors_t>(
+      auto subscription_63 = ahhs::bus::SubscribeTyped<ahhs::module_sensors_t>(
           bus, "S", [&](const std::string&, const ahhs::module_sensors_t&) { ++delivered; },
           &counters);
       const char garbage[] = "definitely not an LCM message";

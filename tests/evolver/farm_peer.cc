@@ -47,10 +47,10 @@ int main(int argc, char** argv) {
     return 0;
   }
   std::optional<eval_result_t> answer;
-  bus::SubscribeTyped<eval_result_t>(bus, bus::kEvalResultChannel,
-                                     [&](const std::string&, const eval_result_t& r) {
-                                       if (r.run == "foreign-run") answer = r;
-                                     });
+  auto subscription_50 = bus::SubscribeTyped<eval_result_t>(
+      bus, bus::kEvalResultChannel, [&](const std::string&, const eval_result_t& r) {
+        if (r.run == "foreign-run") answer = r;
+      });
   evolver::EvalJob job;
   job.protocol_version = 99;
   job.run = "foreign-run";

@@ -192,7 +192,7 @@ TEST_CASE("a worker refuses a request of another protocol version and says why")
   bus::LcmBus bus("memq://");
   WorkerNode worker(&bus, "w", "host", Good);
   std::vector<eval_result_t> results;
-  bus::SubscribeTyped<eval_result_t>(
+  auto subscription_195 = bus::SubscribeTyped<eval_result_t>(
       bus, bus::kEvalResultChannel,
       [&](const std::string&, const eval_result_t& r) { results.push_back(r); });
   Batch batch(1);

@@ -50,13 +50,13 @@ int main(int argc, char** argv) {
   const std::int64_t episode = 4242;
   std::int8_t run_state = -1;
   std::int64_t last_tick = -1;
-  bus::SubscribeTyped<sim_clock_t>(bus, ch.SimClock(),
-                                   [&](const std::string&, const sim_clock_t& c) {
-                                     if (c.episode != episode) return;
-                                     run_state = c.run_state;
-                                     last_tick = c.tick;
-                                   });
-  bus::SubscribeTyped<module_sensors_t>(
+  auto subscription_53 = bus::SubscribeTyped<sim_clock_t>(
+      bus, ch.SimClock(), [&](const std::string&, const sim_clock_t& c) {
+        if (c.episode != episode) return;
+        run_state = c.run_state;
+        last_tick = c.tick;
+      });
+  auto subscription_59 = bus::SubscribeTyped<module_sensors_t>(
       bus, "AHHS/MODULE[0-9]+/SENSORS", [&](const std::string&, const module_sensors_t& m) {
         if (m.episode != episode) return;
         hinge_command_t h{};

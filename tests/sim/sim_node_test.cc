@@ -43,8 +43,9 @@ struct FakeModules {
   std::int64_t episode;
   std::set<int> silent;  // modules that never answer
   int sensors_seen = 0;
+  bus::Subscription subscription;
   FakeModules(bus::Bus& b, std::int64_t ep) : bus(b), episode(ep) {
-    bus::SubscribeTyped<module_sensors_t>(
+    subscription = bus::SubscribeTyped<module_sensors_t>(
         bus, "AHHS/MODULE[0-9]+/SENSORS", [this](const std::string&, const module_sensors_t& m) {
           ++sensors_seen;
           if (silent.count(m.module)) return;
@@ -76,7 +77,7 @@ TEST_CASE("lockstep over the bus equals the same policy run in-process, bit for 
   int states = 0, clocks = 0, topologies = 0, scenes = 0;
   double last_state_time = -1;
   // SIM/STATE: the cart and the bob (they move); SIM/SCENE: the two walls (static, mass 0).
-  bus::SubscribeTyped<sim_state_t>(
+  auto subscription_79 = bus::SubscribeTyped<sim_state_t>(
       bus, "AHHS/SIM/STATE", [&](const std::string&, const sim_state_t& m) {
         ++states;
         CHECK(m.sim_time >= last_state_time);
@@ -88,21 +89,21 @@ TEST_CASE("lockstep over the bus equals the same policy run in-process, bit for 
         CHECK(m.mass[0] > 0);
         CHECK(m.mass[1] > 0);
       });
-  bus::SubscribeTyped<sim_state_t>(bus, "AHHS/SIM/SCENE",
-                                   [&](const std::string&, const sim_state_t& m) {
-                                     ++scenes;
-                                     REQUIRE(m.num_bodies == 2);
-                                     CHECK(m.mass[0] == 0);
-                                     CHECK(m.px[0] == -m.px[1]);  // the walls, symmetric
-                                     CHECK(m.px[1] > 1.0);
-                                   });
-  bus::SubscribeTyped<sim_clock_t>(bus, "AHHS/SIM/CLOCK",
-                                   [&](const std::string&, const sim_clock_t&) { ++clocks; });
-  bus::SubscribeTyped<topology_t>(bus, "AHHS/TOPOLOGY",
-                                  [&](const std::string&, const topology_t& t) {
-                                    ++topologies;
-                                    CHECK(t.num_links == 1);
-                                  });
+  auto subscription_91 = bus::SubscribeTyped<sim_state_t>(
+      bus, "AHHS/SIM/SCENE", [&](const std::string&, const sim_state_t& m) {
+        ++scenes;
+        REQUIRE(m.num_bodies == 2);
+        CHECK(m.mass[0] == 0);
+        CHECK(m.px[0] == -m.px[1]);  // the walls, symmetric
+        CHECK(m.px[1] > 1.0);
+      });
+  auto subscription_99 = bus::SubscribeTyped<sim_clock_t>(
+      bus, "AHHS/SIM/CLOCK", [&](const std::string&, const sim_clock_t&) { ++clocks; });
+  auto subscription_101 = bus::SubscribeTyped<topology_t>(
+      bus, "AHHS/TOPOLOGY", [&](const std::string&, const topology_t& t) {
+        ++topologies;
+        CHECK(t.num_links == 1);
+      });
 
   auto reset = Control(sim_control_t::RESET, 7);
   reset.seed = 99;
@@ -278,10 +279,10 @@ TEST_CASE("real time: the latest command is used whatever tick it answered", "[s
   bus::LcmBus bus("memq://");
   sim::SimNode node(&bus, {});
   int states = 0, clocks = 0;
-  bus::SubscribeTyped<sim_state_t>(bus, "AHHS/SIM/STATE",
-                                   [&](const std::string&, const sim_state_t&) { ++states; });
-  bus::SubscribeTyped<sim_clock_t>(bus, "AHHS/SIM/CLOCK",
-                                   [&](const std::string&, const sim_clock_t&) { ++clocks; });
+  auto subscription_281 = bus::SubscribeTyped<sim_state_t>(
+      bus, "AHHS/SIM/STATE", [&](const std::string&, const sim_state_t&) { ++states; });
+  auto subscription_283 = bus::SubscribeTyped<sim_clock_t>(
+      bus, "AHHS/SIM/CLOCK", [&](const std::string&, const sim_clock_t&) { ++clocks; });
   auto reset = Control(sim_control_t::RESET, 9);
   reset.clock_mode = sim_control_t::MODE_REALTIME;
   reset.duration = 20 * kPeriod;  // 0.35 s of wall time

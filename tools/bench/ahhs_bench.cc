@@ -15,14 +15,17 @@
 #include <set>
 #include <vector>
 
+#include "evolver/arena/children.h"
+#include "evolver/arena/direct_arena.h"
+#include "evolver/arena/episode.h"
+#include "evolver/arena/fused_arena.h"
+#include "evolver/arena/process_arena.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/hormone_system.h"
 #include "modules/core/random.h"
 #include "modules/core/variation.h"
 #include "sim/core/drive.h"
 #include "sim/core/scenario.h"
-#include "tools/launch/episode_runner.h"
-#include "tools/launch/process_arena.h"
 
 namespace am = ahhs::modules;
 using Clock = std::chrono::steady_clock;
@@ -142,7 +145,7 @@ std::pair<double, double> Timed(F&& f) {
 // seconds, which would otherwise show up as a ratio.
 void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   namespace as = ahhs::sim;
-  namespace al = ahhs::launch;
+  namespace al = ahhs::arena;
   as::ScenarioConfig config;  // gait, 5 modules, damped, 60 s at 20 Hz
   am::Rng rng(seed);
   const am::Genome genome = am::RandomGenome({am::Variant::kAhhs2, 5, 30, 4, 1}, rng);
@@ -304,7 +307,7 @@ void BenchEvolve(const std::string& name, const std::string& options, int genera
   char tmpl[] = "/tmp/ahhs-bench-evolve-XXXXXX";
   const std::string dir = mkdtemp(tmpl);
   const std::string command =
-      ahhs::launch::ExecutableDir() + "/ahhs-evolve " + options + " --generations " +
+      ahhs::arena::ExecutableDir() + "/ahhs-evolve " + options + " --generations " +
       std::to_string(generations) + " --lcm-url '" + url + "' --out " + dir + "/run" +
       (workers >= 0 ? " --workers " + std::to_string(workers) : "") + " 2>&1";
   const auto start = std::chrono::steady_clock::now();

@@ -12,12 +12,13 @@
 
 #include "bus/lcm_bus.h"
 #include "bus/make_bus.h"
+#include "evolver/arena/episode.h"
+#include "evolver/arena/fused_arena.h"
+#include "evolver/arena/process_arena.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/random.h"
-#include "tools/launch/episode_runner.h"
-#include "tools/launch/process_arena.h"
 
-namespace al = ahhs::launch;
+namespace al = ahhs::arena;
 
 namespace {
 
@@ -75,12 +76,10 @@ int main(int argc, char** argv) {
 
   al::EpisodeSpec spec;
   try {
-    spec.config.kind = ahhs::sim::ParseScenarioKind(scenario);
-    spec.config.joints = ahhs::sim::ParseJoints(joints);
-    spec.config.num_modules = spec.config.kind == ahhs::sim::ScenarioKind::kPendulum ? 2 : modules;
     if (app.count("--duration") && !(duration > 0))
       throw std::invalid_argument("--duration must be positive");
-    spec.config.duration = duration;
+    spec.config = ahhs::sim::MakeScenarioConfig(ahhs::sim::ParseScenarioKind(scenario),
+                                                ahhs::sim::ParseJoints(joints), modules, duration);
     const std::string config_error = ahhs::sim::CheckConfig(spec.config);
     if (!config_error.empty()) throw std::invalid_argument(config_error);
     nlohmann::json meta;

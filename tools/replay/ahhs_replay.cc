@@ -21,6 +21,8 @@
 
 #include "bus/channels.h"
 #include "bus/codec.h"
+#include "evolver/arena/direct_arena.h"
+#include "evolver/arena/episode.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/store/run_store.h"
 #include "modules/core/genome_json.h"
@@ -28,10 +30,9 @@
 #include "modules/core/variation.h"
 #include "sim/core/behaviour.h"
 #include "sim/node/sim_codec.h"
-#include "tools/launch/episode_runner.h"
 
 namespace fs = std::filesystem;
-namespace al = ahhs::launch;
+namespace al = ahhs::arena;
 namespace am = ahhs::modules;
 namespace ev = ahhs::evolver;
 
@@ -184,11 +185,9 @@ int main(int argc, char** argv) {
       what = run_dir + ", generation " + std::to_string(record.generation) + ", individual " +
              std::to_string(record.index);
     } else {
-      spec.config.kind = ahhs::sim::ParseScenarioKind(scenario);
-      spec.config.joints = ahhs::sim::ParseJoints(joints);
-      spec.config.num_modules =
-          spec.config.kind == ahhs::sim::ScenarioKind::kPendulum ? 2 : modules;
-      spec.config.duration = duration;
+      spec.config =
+          ahhs::sim::MakeScenarioConfig(ahhs::sim::ParseScenarioKind(scenario),
+                                        ahhs::sim::ParseJoints(joints), modules, duration);
       const std::string error = ahhs::sim::CheckConfig(spec.config);
       if (!error.empty()) throw std::invalid_argument(error);
       nlohmann::json meta;

@@ -22,9 +22,9 @@
 #include <map>
 #include <thread>
 
+#include "evolver/arena/children.h"
+#include "evolver/arena/process_arena.h"
 #include "evolver/store/run_store.h"
-#include "tools/launch/episode_runner.h"
-#include "tools/launch/process_arena.h"
 #include "tools/study/study_dir.h"
 
 namespace fs = std::filesystem;
@@ -115,19 +115,19 @@ struct RunOptions {
 
 struct Running {
   at::StudyRun run;
-  pid_t pid = -1;
   std::chrono::steady_clock::time_point started;
 };
 
-// Starts one run's ahhs-evolve (new or resumed). Returns -1 when the run directory stays in use.
-pid_t StartRun(const at::StudyDir& study, const at::StudyRun& run, const RunOptions& options,
-               const std::string& evolve) {
+// Starts one run's ahhs-evolve (new or resumed) as a child; returns false when the run directory
+// stays in use by another process.
+bool StartRun(const at::StudyDir& study, const at::StudyRun& run, const RunOptions& options,
+              const std::string& evolve, ahhs::arena::ChildProcesses* children) {
   const std::string dir = study.RunDir(run);
   for (int k = 0; ahhs::evolver::RunStore::InUse(dir); ++k) {
     if (k == 0)
       std::printf("[%s] waiting for the last process of %s to end\n", Stamp().c_str(),
                   run.Name().c_str());
-    if (k >= 600 || g_signals > 0) return -1;
+    if (k >= 600 || g_signals > 0) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   std::error_code ec;
@@ -150,12 +150,13 @@ pid_t StartRun(const at::StudyDir& study, const at::StudyRun& run, const RunOpti
     for (const auto& a : argv) log << ' ' << a;
     log << '\n';
   }
-  return ahhs::launch::SpawnChild(argv, false, study.LogFile(run));
+  children->Start(run.Name(), argv, false, study.LogFile(run));
+  return true;
 }
 
 int RunStudy(const at::StudyDir& study, RunOptions options) {
   StudyLock lock(study.dir());
-  const std::string evolve = ahhs::launch::ExecutableDir() + "/ahhs-evolve";
+  const std::string evolve = ahhs::arena::ExecutableDir() + "/ahhs-evolve";
   if (options.workers_per_run <= 0)
     options.workers_per_run = std::max(
         1, static_cast<int>(std::thread::hardware_concurrency()) / std::max(1, options.parallel));
@@ -185,20 +186,21 @@ int RunStudy(const at::StudyDir& study, RunOptions options) {
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
-  std::vector<Running> running;
+  ahhs::arena::ChildProcesses children;
+  std::map<std::size_t, Running> running;  // by child index
   std::size_t next = 0;
   int failed = 0;
   while ((next < queue.size() || !running.empty()) && g_signals == 0) {
     while (running.size() < static_cast<std::size_t>(options.parallel) && next < queue.size() &&
            g_signals == 0) {
       const at::StudyRun& run = queue[next++];
-      pid_t pid = -1;
+      bool started = false;
       try {
-        pid = StartRun(study, run, options, evolve);
+        started = StartRun(study, run, options, evolve, &children);
       } catch (const std::exception& e) {
         std::ofstream(study.FailedFile(run)) << e.what() << '\n';
       }
-      if (pid < 0) {
+      if (!started) {
         if (g_signals > 0) break;
         std::printf("[%s] %s could not start (its directory stays in use)\n", Stamp().c_str(),
                     run.Name().c_str());
@@ -208,53 +210,48 @@ int RunStudy(const at::StudyDir& study, RunOptions options) {
       std::printf("[%s] started %s (port %d)\n", Stamp().c_str(), run.Name().c_str(),
                   options.port_base + run.index);
       std::fflush(stdout);
-      running.push_back({run, pid, std::chrono::steady_clock::now()});
+      running[children.size() - 1] = {run, std::chrono::steady_clock::now()};
     }
-    int status = 0;
-    const pid_t pid = waitpid(-1, &status, WNOHANG);
-    if (pid <= 0) {
+    const auto ended = children.Reap();
+    if (ended.empty()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(200));
       continue;
     }
-    const auto it = std::find_if(running.begin(), running.end(),
-                                 [&](const Running& r) { return r.pid == pid; });
-    if (it == running.end()) continue;
-    const Running done = *it;
-    running.erase(it);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - done.started).count();
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
-      try {
-        study.WriteSummary(done.run);
-        ++complete;
-        const at::RunState state = study.State(done.run);
-        std::printf("[%s] complete %s: best %.6g after %s; %d of %zu runs complete\n",
-                    Stamp().c_str(), done.run.Name().c_str(), state.best.value_or(0.0),
-                    Seconds(seconds).c_str(), complete, runs.size());
-      } catch (const std::exception& e) {
-        std::ofstream(study.FailedFile(done.run)) << e.what() << '\n';
-        std::printf("[%s] FAILED %s: %s\n", Stamp().c_str(), done.run.Name().c_str(), e.what());
+    for (const auto& end : ended) {
+      const Running done = running.at(end.index);
+      running.erase(end.index);
+      const int status = end.status;
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - done.started).count();
+      if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+        try {
+          study.WriteSummary(done.run);
+          ++complete;
+          const at::RunState state = study.State(done.run);
+          std::printf("[%s] complete %s: best %.6g after %s; %d of %zu runs complete\n",
+                      Stamp().c_str(), done.run.Name().c_str(), state.best.value_or(0.0),
+                      Seconds(seconds).c_str(), complete, runs.size());
+        } catch (const std::exception& e) {
+          std::ofstream(study.FailedFile(done.run)) << e.what() << '\n';
+          std::printf("[%s] FAILED %s: %s\n", Stamp().c_str(), done.run.Name().c_str(), e.what());
+          ++failed;
+        }
+      } else if (g_signals == 0) {
+        const std::string why = "ahhs-evolve ended (" + ahhs::arena::DescribeExit(status) +
+                                "): " + LastLine(study.LogFile(done.run));
+        std::ofstream(study.FailedFile(done.run)) << why << '\n';
+        std::printf("[%s] FAILED %s: %s (log: %s)\n", Stamp().c_str(), done.run.Name().c_str(),
+                    why.c_str(), study.LogFile(done.run).c_str());
         ++failed;
       }
-    } else if (g_signals == 0) {
-      const std::string why =
-          (WIFSIGNALED(status) ? "ahhs-evolve ended by signal " + std::to_string(WTERMSIG(status))
-                               : "ahhs-evolve exited with " + std::to_string(WEXITSTATUS(status))) +
-          ": " + LastLine(study.LogFile(done.run));
-      std::ofstream(study.FailedFile(done.run)) << why << '\n';
-      std::printf("[%s] FAILED %s: %s (log: %s)\n", Stamp().c_str(), done.run.Name().c_str(),
-                  why.c_str(), study.LogFile(done.run).c_str());
-      ++failed;
+      std::fflush(stdout);
     }
-    std::fflush(stdout);
   }
   if (g_signals > 0) {
-    std::vector<pid_t> pids;
-    for (const auto& r : running) pids.push_back(r.pid);
     std::printf("[%s] stopping %zu runs (each keeps its committed generations)\n", Stamp().c_str(),
-                pids.size());
+                running.size());
     std::fflush(stdout);
-    ahhs::launch::StopChildren(&pids, std::chrono::seconds(30));
+    children.StopAll(std::chrono::seconds(30));
     std::printf("stopped; continue with: ahhs-study run --resume %s\n", study.dir().c_str());
     return kExitInterrupted;
   }
@@ -373,7 +370,7 @@ int main(int argc, char** argv) {
         throw CLI::ValidationError("a new study needs a PLAN");
       if (!resume_dir.empty()) return RunStudy(at::StudyDir::Open(resume_dir), options);
       const at::StudyPlan plan = at::LoadStudyPlan(plan_file);
-      const std::string evolve = ahhs::launch::ExecutableDir() + "/ahhs-evolve";
+      const std::string evolve = ahhs::arena::ExecutableDir() + "/ahhs-evolve";
       const at::StudyDir study = at::StudyDir::Create(
           out_dir, plan_file, plan, [&](const std::string& f) { return ResolveConfig(evolve, f); });
       return RunStudy(study, options);

@@ -13,9 +13,10 @@
 #include <vector>
 
 #include "bus/bus.h"
-#include "tools/launch/episode_runner.h"
+#include "evolver/arena/children.h"
+#include "evolver/arena/episode.h"
 
-namespace ahhs::launch {
+namespace ahhs::arena {
 
 struct ProcessArenaOptions {
   std::string url;      // LCM URL of the arena's traffic
@@ -29,17 +30,6 @@ struct ProcessArenaOptions {
   std::string logger = "ahhs-logger";
   std::string bin_dir;  // where ahhs-sim and the others are (default: next to this program)
 };
-
-// Starts `argv` (argv[0] a path) as a child that dies with this process and ignores Ctrl-C (its
-// owner stops it in order). With `quiet` its stdout goes to /dev/null; with an `output_file` its
-// stdout and stderr are appended to that file. No descriptor beyond stdin/stdout/stderr is
-// inherited. Throws std::runtime_error when fork fails or the output file cannot be opened.
-pid_t SpawnChild(const std::vector<std::string>& argv, bool quiet,
-                 const std::string& output_file = "");
-
-// Sends SIGTERM to every child (pid > 0), waits up to `grace`, then SIGKILLs the rest. Sets
-// every pid to -1.
-void StopChildren(std::vector<pid_t>* pids, std::chrono::milliseconds grace);
 
 class ProcessArena {
  public:
@@ -61,17 +51,12 @@ class ProcessArena {
   bool healthy() const { return healthy_; }
 
  private:
-  struct Child {
-    std::string name;
-    pid_t pid = -1;
-  };
   bool ChildrenAlive(std::string* why);
-  void StopAll();
 
   ProcessArenaOptions options_;
-  std::vector<Child> children_;
+  ChildProcesses children_;  // the logger (when logging) first
   std::unique_ptr<bus::Bus> bus_;
   bool healthy_ = true;
 };
 
-}  // namespace ahhs::launch
+}  // namespace ahhs::arena

@@ -1,0 +1,73 @@
+#include "evolver/arena/arena.h"
+
+#include <stdexcept>
+
+#include "evolver/arena/direct_arena.h"
+#include "evolver/arena/fused_arena.h"
+#include "evolver/arena/process_arena.h"
+
+namespace ahhs::arena {
+
+ArenaKind ParseArenaKind(const std::string& name) {
+  if (name == "direct") return ArenaKind::kDirect;
+  if (name == "fused") return ArenaKind::kFused;
+  if (name == "processes") return ArenaKind::kProcesses;
+  throw std::invalid_argument("unknown arena '" + name + "' (direct, fused or processes)");
+}
+
+const char* ArenaKindName(ArenaKind kind) {
+  switch (kind) {
+    case ArenaKind::kDirect:
+      return "direct";
+    case ArenaKind::kFused:
+      return "fused";
+    case ArenaKind::kProcesses:
+      return "processes";
+  }
+  return "?";
+}
+
+namespace {
+
+class DirectArena : public Arena {
+ public:
+  EpisodeResult Run(const EpisodeSpec& spec) override { return RunDirectEpisode(spec); }
+};
+
+class FusedArena : public Arena {
+ public:
+  EpisodeResult Run(const EpisodeSpec& spec) override { return RunFused(spec); }
+};
+
+class ProcessesArena : public Arena {
+ public:
+  explicit ProcessesArena(ProcessArenaOptions options) : processes_(std::move(options)) {}
+  EpisodeResult Run(const EpisodeSpec& spec) override {
+    return processes_.Run(spec, [](std::string*) { return true; });
+  }
+  bool healthy() const override { return processes_.healthy(); }
+
+ private:
+  ProcessArena processes_;
+};
+
+}  // namespace
+
+std::unique_ptr<Arena> MakeArena(const ArenaOptions& options, const sim::ScenarioConfig& config) {
+  switch (options.kind) {
+    case ArenaKind::kDirect:
+      return std::make_unique<DirectArena>();
+    case ArenaKind::kFused:
+      return std::make_unique<FusedArena>();
+    case ArenaKind::kProcesses: {
+      ProcessArenaOptions o;
+      o.url = options.url;
+      o.arena = options.name;
+      o.num_modules = sim::ShapeOf(config).compartments;
+      return std::make_unique<ProcessesArena>(o);
+    }
+  }
+  throw std::invalid_argument("unknown arena kind");
+}
+
+}  // namespace ahhs::arena

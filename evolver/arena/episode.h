@@ -1,0 +1,45 @@
+// One episode of the paper's tasks as an arena runs it: what to run (EpisodeSpec) and what came
+// out (EpisodeResult). Every arena (evolver/arena/arena.h) gives the same result to the bit.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+#include "modules/core/genome.h"
+#include "sim/core/scenario.h"
+
+namespace ahhs::arena {
+
+struct EpisodeSpec {
+  sim::ScenarioConfig config;
+  modules::Genome genome;
+  std::uint64_t seed = 1;    // the episode seed (on the wire: its bits in sim_control_t.seed)
+  std::int64_t episode = 1;  // unique on the bus
+  bool realtime = false;
+  std::string arena = "AHHS";
+  std::chrono::seconds handshake_timeout{20};
+  // Real time only: start without the modules that have not answered after this long (a
+  // physical module may come later and join the running episode).
+  std::chrono::milliseconds realtime_join_wait{1500};
+  std::chrono::seconds episode_timeout{3600};
+  // The fused arena's bus: inproc:// (bus/in_process_bus.h, the default: no system call per
+  // message) or memq:// (LCM's in-process provider). Results are the same to the bit.
+  std::string fused_url = "inproc://";
+};
+
+struct EpisodeResult {
+  bool ok = false;
+  double fitness = 0;
+  double cost = 0;
+  std::string error;
+  int states_missed = 0;
+  // The episode itself failed (physics blew up; `error` says how): a property of the genome
+  // and seed, not of the arena. False for arena failures (timeouts, dead processes).
+  bool episode_failed = false;
+};
+
+// Checks the genome's sensor/actuator shape against the scenario; "" or a clear message.
+std::string CheckGenomeFits(const modules::Genome& genome, const sim::ScenarioConfig& config);
+
+}  // namespace ahhs::arena

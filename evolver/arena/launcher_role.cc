@@ -1,0 +1,133 @@
+#include "evolver/arena/launcher_role.h"
+
+#include <ahhs/fitness_t.hpp>
+#include <ahhs/module_status_t.hpp>
+#include <ahhs/sim_clock_t.hpp>
+#include <ahhs/sim_control_t.hpp>
+#include <optional>
+#include <set>
+#include <vector>
+
+#include "bus/channels.h"
+#include "bus/typed.h"
+#include "modules/node/genome_codec.h"
+#include "sim/node/sim_codec.h"
+
+namespace ahhs::arena {
+
+using Clock = std::chrono::steady_clock;
+
+EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
+                         const std::function<void(std::chrono::microseconds)>& pump,
+                         const std::function<bool(std::string*)>& alive) {
+  EpisodeResult result;
+  const bus::ArenaChannels ch(spec.arena);
+  const int modules = sim::ShapeOf(spec.config).compartments;
+  std::set<int> ready;
+  bool sim_ready = false, monitor_ready = false;
+  std::optional<fitness_t> final_fitness;
+  std::int8_t run_state = -1;
+  const std::int64_t ep = spec.episode;
+  std::vector<bus::Subscription> subs;
+  auto on_status = [&](const std::string&, const module_status_t& s) {
+    if (s.episode == ep &&
+        (s.state == module_status_t::READY || s.state == module_status_t::RUNNING))
+      ready.insert(s.module);
+    if (s.episode == ep && s.state == module_status_t::ERROR && result.error.empty())
+      result.error = "module " + std::to_string(s.module) + " refused the episode: " + s.message;
+  };
+  // One exact channel per module rather than a regex: over udpm:// the bus's socket filter then
+  // keeps the per-tick traffic of the modules out of the launcher.
+  for (int m = 0; m < modules; ++m)
+    subs.push_back(bus::SubscribeTyped<module_status_t>(bus, ch.Status(m), on_status));
+  subs.push_back(bus::SubscribeTyped<sim_clock_t>(bus, ch.SimClock(),
+                                                  [&](const std::string&, const sim_clock_t& c) {
+                                                    if (c.episode != ep) return;
+                                                    run_state = c.run_state;
+                                                    if (c.run_state == sim_clock_t::RESET)
+                                                      sim_ready = true;
+                                                  }));
+  subs.push_back(bus::SubscribeTyped<fitness_t>(bus, ch.Fitness(),
+                                                [&](const std::string&, const fitness_t& f) {
+                                                  if (f.episode != ep) return;
+                                                  monitor_ready = true;
+                                                  if (f.is_final) final_fitness = f;
+                                                }));
+  auto finish = [&](EpisodeResult r) {
+    subs.clear();  // unsubscribes
+    return r;
+  };
+
+  sim_control_t c{};
+  c.episode = ep;
+  c.seed = static_cast<std::int64_t>(spec.seed);  // LCM has no unsigned type: the same 64 bits
+  sim::ScenarioToWire(spec.config, &c);
+  c.clock_mode = spec.realtime ? sim_control_t::MODE_REALTIME : sim_control_t::MODE_LOCKSTEP;
+  const genome_t genome = modules::GenomeMessage(spec.genome, ep);
+
+  // Handshake: RESET + GENOME, repeated until the sim, every module and the monitor answered.
+  const auto handshake_start = Clock::now();
+  const auto handshake_end = handshake_start + spec.handshake_timeout;
+  auto next_send = Clock::now();
+  std::string why;
+  auto modules_ok = [&] {
+    if (static_cast<int>(ready.size()) == modules) return true;
+    return spec.realtime && !ready.empty() &&
+           Clock::now() > handshake_start + spec.realtime_join_wait;
+  };
+  while (!(sim_ready && monitor_ready && modules_ok())) {
+    if (!alive(&why)) return finish({false, 0, 0, why, 0});
+    if (!result.error.empty()) return finish(result);
+    if (Clock::now() > handshake_end) {
+      std::string missing = sim_ready ? "" : " the sim,";
+      if (!monitor_ready) missing += " the fitness monitor,";
+      for (int m = 0; m < modules; ++m)
+        if (!ready.count(m)) missing += " module " + std::to_string(m) + ",";
+      missing.pop_back();
+      return finish({false, 0, 0, "no answer to the episode handshake from" + missing, 0});
+    }
+    if (Clock::now() >= next_send) {
+      c.command = sim_control_t::RESET;
+      c.utime = bus::NowUtime();
+      bus::PublishTyped(bus, ch.SimControl(), c);
+      auto g = genome;
+      g.utime = bus::NowUtime();
+      bus::PublishTyped(bus, ch.Genome(), g);
+      next_send = Clock::now() + std::chrono::milliseconds(50);
+    }
+    pump(std::chrono::milliseconds(5));
+  }
+
+  // START, repeated until the sim's clock shows the episode running (a lost START must not
+  // leave everyone waiting; the sim ignores repeats).
+  c.command = sim_control_t::START;
+  const auto episode_end = Clock::now() + spec.episode_timeout;
+  auto next_genome = Clock::now() + std::chrono::seconds(1);
+  auto next_start = Clock::now();
+  while (!final_fitness) {
+    if (!alive(&why)) return finish({false, 0, 0, why, 0});
+    if (run_state == sim_clock_t::RESET && Clock::now() >= next_start) {
+      c.utime = bus::NowUtime();
+      bus::PublishTyped(bus, ch.SimControl(), c);
+      next_start = Clock::now() + std::chrono::milliseconds(100);
+    }
+    if (Clock::now() > episode_end)
+      return finish({false, 0, 0, "the episode did not end in time", 0});
+    if (spec.realtime && Clock::now() >= next_genome) {  // lets a module that starts late join
+      auto g = genome;
+      g.utime = bus::NowUtime();
+      bus::PublishTyped(bus, ch.Genome(), g);
+      next_genome = Clock::now() + std::chrono::seconds(1);
+    }
+    pump(std::chrono::milliseconds(20));
+  }
+  if (final_fitness->status != fitness_t::OK) {
+    EpisodeResult failed{false, 0, 0, final_fitness->message, 0};
+    failed.episode_failed = true;
+    return finish(failed);
+  }
+  return finish(
+      {true, final_fitness->fitness, final_fitness->cost, "", final_fitness->states_missed});
+}
+
+}  // namespace ahhs::arena

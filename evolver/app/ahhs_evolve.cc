@@ -15,6 +15,7 @@
 #include <iostream>
 #include <thread>
 
+#include "bus/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "evolver/arena/children.h"
@@ -127,6 +128,7 @@ constexpr int kMaxWorkerRestarts = 20;
 
 int main(int argc, char** argv) {
   CLI::App app{"ahhs-evolve: evolves hormone controllers (the paper's GA) on evaluation workers"};
+  app.allow_config_extras(CLI::config_extras_mode::error);
   app.set_config("--config", "", "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
   std::string scenario = "gait", joints = "damped", variant = "ahhs2", out_dir, resume_dir,
               arena = "direct", url = ahhs::bus::kDefaultLcmUrl, mutation_profile = "paper";
@@ -191,7 +193,7 @@ int main(int argc, char** argv) {
                  "seconds to wait for any worker before giving up (the run stays resumable)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   // The run: a new one from the options, or the stored one.
   std::string command_line;
@@ -263,6 +265,8 @@ int main(int argc, char** argv) {
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
+  // Follow-up commands are printed so that they run as printed (full paths).
+  const std::string self = ahhs::arena::ExecutableDir() + "/ahhs-evolve";
 
   // Local workers, started before our own bus exists.
   if (workers < 0) workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -344,16 +348,15 @@ int main(int argc, char** argv) {
           static_cast<unsigned long long>(c.results.dropped + c.statuses.dropped));
   } catch (const ev::FarmInterrupted&) {
     progress.Clear();
-    std::printf(
-        "interrupted: generations 0-%d are stored in %s\ncontinue with: ahhs-evolve "
-        "--resume %s\n",
-        store->LastGeneration(), dir.c_str(), dir.c_str());
+    std::printf("interrupted: generations 0-%d are stored in %s\ncontinue with: %s --resume %s\n",
+                store->LastGeneration(), dir.c_str(), self.c_str(), dir.c_str());
     exit_code = 130;
   } catch (const std::exception& e) {
     progress.Clear();
     std::cerr << "ahhs-evolve: " << e.what() << "\nthe run is stored up to generation "
-              << store->LastGeneration() << "; continue with: ahhs-evolve --resume " << dir << '\n';
-    exit_code = 2;
+              << store->LastGeneration() << "; continue with: " << self << " --resume " << dir
+              << '\n';
+    exit_code = ahhs::cli::kExitFailure;
   }
   local.StopAll(std::chrono::seconds(5));
   if (exit_code != 0) return exit_code;
@@ -361,8 +364,8 @@ int main(int argc, char** argv) {
   // Summary.
   try {
     const ev::IndividualRecord best = store->Best();
-    std::string replay =
-        "ahhs-launch --scenario " + std::string(ahhs::sim::ScenarioName(config.scenario.kind));
+    std::string replay = ahhs::arena::ExecutableDir() + "/ahhs-launch --scenario " +
+                         std::string(ahhs::sim::ScenarioName(config.scenario.kind));
     if (config.scenario.kind == ahhs::sim::ScenarioKind::kGait)
       replay += " --joints " + std::string(ahhs::sim::JointsName(config.scenario.joints)) +
                 " --modules " + std::to_string(config.scenario.num_modules);
@@ -378,7 +381,7 @@ int main(int argc, char** argv) {
     std::printf("replay the best genome: %s\n", replay.c_str());
   } catch (const std::exception& e) {
     std::cerr << "ahhs-evolve: " << e.what() << '\n';
-    return 2;
+    return ahhs::cli::kExitFailure;
   }
   return 0;
 }

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "bus/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "evolver/fitness/fitness_node.h"
@@ -29,7 +30,7 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", timeout,
                  "give up after this many seconds without a final result (0 = never)")
       ->check(CLI::NonNegativeNumber);
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
   try {
     auto bus = ahhs::bus::MakeBus(url);
     ahhs::evolver::FitnessNode node(bus.get(), arena);
@@ -46,7 +47,7 @@ int main(int argc, char** argv) {
         if (f->status != ahhs::fitness_t::OK) {
           std::fprintf(stderr, "ahhs-fitness: episode %lld failed: %s\n",
                        static_cast<long long>(f->episode), f->message.c_str());
-          return 2;
+          return ahhs::cli::kExitFailure;
         }
         std::printf("episode %lld: %d states, %d ticks missed\nfitness: %.17g\n",
                     static_cast<long long>(f->episode), f->states_seen, f->states_missed,
@@ -57,7 +58,7 @@ int main(int argc, char** argv) {
       if (timeout > 0 &&
           std::chrono::steady_clock::now() - start > std::chrono::duration<double>(timeout)) {
         std::fprintf(stderr, "ahhs-fitness: no final fitness within %.0f s\n", timeout);
-        return 3;
+        return ahhs::cli::kExitFailure;
       }
     }
   } catch (const std::exception& e) {

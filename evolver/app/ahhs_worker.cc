@@ -16,6 +16,7 @@
 #include <limits>
 #include <thread>
 
+#include "bus/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "evolver/arena/children.h"
@@ -68,7 +69,7 @@ int main(int argc, char** argv) {
   app.add_option("--id", id, "worker id, unique on the bus (default: host:pid)");
   app.add_flag("-v,--verbose", verbose, "print a line per evaluation");
   app.add_flag("-q,--quiet", quiet, "print errors only");
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);

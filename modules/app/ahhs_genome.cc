@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "bus/cli.h"
 #include "modules/app/sensor_csv.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/organism.h"
@@ -215,7 +216,7 @@ int main(int argc, char** argv) {
   run->add_option("--ticks", ticks, "ticks to run (default: up to the CSV's last tick)")
       ->check(CLI::PositiveNumber);
 
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   try {
     if (random->parsed()) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "bus/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "modules/node/module_node.h"
@@ -27,7 +28,7 @@ int main(int argc, char** argv) {
                  "lockstep timeout)")
       ->check(CLI::Range(1, 600000))
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
   options.hormone_timeout = std::chrono::milliseconds(timeout_ms);
   try {
     auto bus = ahhs::bus::MakeBus(url);

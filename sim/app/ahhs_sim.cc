@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "bus/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "modules/core/random.h"
@@ -106,7 +107,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--duration", duration, "episode length, simulated seconds (default: the task's)");
   app.add_flag("-v,--verbose", verbose, "print the state once per simulated second");
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   if (drive_opt->count() == 0) {
     try {
@@ -153,7 +154,7 @@ int main(int argc, char** argv) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (status == as::StepStatus::kFailed) {
       std::cerr << "ahhs-sim: episode failed: " << sim->error() << '\n';
-      return 2;
+      return ahhs::cli::kExitFailure;
     }
     std::printf(
         "scenario %s, drive %s, seed %llu: %lld ticks, %.1f s simulated in %.3f s wall (%.0fx real "

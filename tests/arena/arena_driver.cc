@@ -12,6 +12,7 @@
 #include <set>
 
 #include "bus/channels.h"
+#include "bus/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
@@ -38,7 +39,7 @@ int main(int argc, char** argv) {
   app.add_flag("--realtime", realtime);
   std::string arena = "AHHS";
   app.add_option("--arena", arena);
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   auto probe = sim::MakeScenario(testing::ConfigOf(e));
   modules::Rng rng(static_cast<std::uint64_t>(e.seed));

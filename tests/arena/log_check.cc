@@ -13,6 +13,7 @@
 #include <set>
 
 #include "bus/channels.h"
+#include "bus/cli.h"
 #include "bus/codec.h"
 
 int main(int argc, char** argv) {
@@ -28,7 +29,7 @@ int main(int argc, char** argv) {
   app.add_option("--ticks", ticks)->required();
   bool trace = false;
   app.add_flag("--trace", trace, "expect TRACE messages instead of hormone packets");
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   lcm::LogFile log(path, "r");
   if (!log.good()) {

@@ -41,12 +41,12 @@ gait="--scenario gait --hormones 3 --rules 6 --population 6 --generations 3 --du
 echo "== 1. determinism across workers and arenas"
 $E $pend --out $tmp/p-direct-1 --workers 1 >$tmp/out 2>&1 || { cat $tmp/out; fail "pendulum run"; }
 grep -q "^best fitness: " $tmp/out || fail "no summary: $(cat $tmp/out)"
-grep -q "^replay the best genome: ahhs-launch --scenario pendulum --duration 10 --genome $tmp/p-direct-1/best.json --seed " $tmp/out ||
+grep -q "^replay the best genome: $bin/ahhs-launch --scenario pendulum --duration 10 --genome $tmp/p-direct-1/best.json --seed " $tmp/out ||
   fail "no replay command: $(cat $tmp/out)"
 [[ $(wc -l <$tmp/p-direct-1/generations.csv) == 6 ]] || fail "generations.csv: $(cat $tmp/p-direct-1/generations.csv)"
 ls $tmp/p-direct-1/best/gen-000{0,1,2,3,4}.json >/dev/null || fail "best genome files"
 # The replay command reproduces the stored best fitness.
-replay=$(sed -n 's/^replay the best genome: ahhs-launch //p' $tmp/out)
+replay=$(sed -n "s|^replay the best genome: $bin/ahhs-launch ||p" $tmp/out)
 best=$(sed -n 's/^best fitness: \([^ ]*\) .*/\1/p' $tmp/out)
 "$bin/ahhs-launch" $replay --fused >$tmp/replay.out || fail "replay"
 [[ "$(tail -1 $tmp/replay.out)" == "fitness: $best" ]] || fail "replay gives $(tail -1 $tmp/replay.out), stored $best"
@@ -104,7 +104,7 @@ pid=$!
 for _ in $(seq 1 600); do [[ $(wc -l 2>/dev/null <$tmp/ctrlc/generations.csv || echo 0) -gt 3 ]] && break; sleep 0.01; done
 kill -INT $pid; wait $pid; rc=$?
 [[ $rc == 130 ]] || fail "Ctrl-C exit status $rc: $(cat $tmp/ctrlc.out)"
-grep -q "continue with: ahhs-evolve --resume $tmp/ctrlc" $tmp/ctrlc.out || fail "Ctrl-C message: $(cat $tmp/ctrlc.out)"
+grep -q "continue with: $E --resume $tmp/ctrlc" $tmp/ctrlc.out || fail "Ctrl-C message: $(cat $tmp/ctrlc.out)"
 sleep 0.3
 pgrep -g "$pg" -f "$bin/ahhs-worker" >/dev/null && fail "workers left after Ctrl-C"
 $E --resume $tmp/ctrlc >/dev/null 2>&1 || fail "resume after Ctrl-C"
@@ -163,7 +163,7 @@ grep -q "cannot be given with --resume" $tmp/out || fail "resume option message:
 $E --config /nonexistent.toml >$tmp/out 2>&1 && fail "missing config accepted"
 $E $pend --out $tmp/noworker --workers 0 --worker-wait 1 >$tmp/out 2>&1
 rc=$?
-[[ $rc == 2 ]] || fail "no worker: exit $rc"
+[[ $rc == 1 ]] || fail "no worker: exit $rc"
 grep -q "no evaluation worker has answered" $tmp/out || fail "no-worker message: $(cat $tmp/out)"
-grep -q "continue with: ahhs-evolve --resume $tmp/noworker" $tmp/out || fail "no resume hint"
+grep -q "continue with: $E --resume $tmp/noworker" $tmp/out || fail "no resume hint"
 echo "PASS"

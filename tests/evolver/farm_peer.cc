@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "bus/channels.h"
+#include "bus/cli.h"
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
 #include "evolver/farm/farm_codec.h"
@@ -28,7 +29,7 @@ int main(int argc, char** argv) {
   app.add_option("--lcm-url", url)->required();
   app.add_option("--seconds", seconds);
   app.add_option("--worker", worker);
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
   bus::LcmBus bus(url);
   const auto end = std::chrono::steady_clock::now() +
                    std::chrono::milliseconds(static_cast<long>(seconds * 1000));

@@ -47,6 +47,17 @@ grep -q "reproduced exactly" $tmp/report/summary.md || fail "summary lacks the r
 grep -q "| pendulum AHHS2-8 | pendulum AHHS1-12 | 3 | 3 |" $tmp/report/summary.md || fail "summary lacks the Wilcoxon table: $(cat $tmp/report/summary.md)"
 [[ "$(head -c 4 $tmp/report/fitness.png | tail -c 3)" == PNG ]] || fail "fitness.png is not a PNG"
 echo "summary: $(wc -l <$tmp/report/summary.md) lines"
+# An old report is replaced only when asked, and then wholly (no stale figure stays).
+"$bin/ahhs-report" $tmp/a2-1 -o $tmp/report --no-replay >$tmp/out 2>&1; rc=$?
+[[ $rc == 2 ]] && grep -q "pass --overwrite" $tmp/out || fail "report into an old report: $rc $(cat $tmp/out)"
+"$bin/ahhs-report" $tmp/a2-1 -o $tmp/report --no-replay --overwrite >$tmp/out 2>&1 || fail "--overwrite: $(cat $tmp/out)"
+[[ ! -e $tmp/report/replay.lcm && -s $tmp/report/fitness.png ]] || fail "--overwrite left stale files"
+mkdir $tmp/mine && echo x >$tmp/mine/notes.txt
+"$bin/ahhs-report" $tmp/a2-1 -o $tmp/mine --no-replay --overwrite >$tmp/out 2>&1; rc=$?
+[[ $rc == 2 && -s $tmp/mine/notes.txt ]] || fail "a foreign directory was emptied: $rc $(cat $tmp/out)"
+"$bin/ahhs-replay" $tmp/a2-1 --log $tmp/a2-1.lcm >$tmp/out 2>&1; rc=$?
+[[ $rc == 2 ]] && grep -q "a2-1.lcm exists; pass --overwrite" $tmp/out || fail "replay --log over a file: $rc $(cat $tmp/out)"
+"$bin/ahhs-replay" $tmp/a2-1 --log $tmp/a2-1.lcm --overwrite >/dev/null 2>&1 || fail "replay --log --overwrite"
 
 echo "== neighbourhood"
 "$bin/ahhs-report" neighbourhood $tmp/a2-1 --mutants 6 -o $tmp/nb >$tmp/nb.out 2>&1 || { cat $tmp/nb.out; fail "neighbourhood"; }

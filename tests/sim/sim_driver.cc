@@ -13,6 +13,7 @@
 #include <cstdio>
 
 #include "bus/channels.h"
+#include "bus/cli.h"
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
 #include "sim/core/scenario.h"
@@ -43,7 +44,7 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed);
   app.add_option("--duration", duration);
   app.add_option("--modules", modules);
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   bus::LcmBus bus(url);
   bus::ArenaChannels ch;

@@ -107,10 +107,11 @@ for _ in $(seq 100); do grep -q started $tmp/B.out 2>/dev/null && break; sleep 0
 [[ $rc == 1 ]] && grep -q "is in use by another ahhs-study run" $tmp/out || fail "second ahhs-study: $rc $(cat $tmp/out)"
 kill -INT $pid; wait $pid; rc=$?
 [[ $rc == 130 ]] || fail "Ctrl-C: exit $rc: $(cat $tmp/B.out)"
-grep -q "continue with: ahhs-study run --resume $tmp/B" $tmp/B.out || fail "Ctrl-C: $(cat $tmp/B.out)"
+grep -q "continue with: $S run --resume $tmp/B" $tmp/B.out || fail "Ctrl-C: $(cat $tmp/B.out)"
 "$S" status $tmp/B >$tmp/status || fail "status"
 grep -Eq "pend2/seed-1 +(stopped|complete)" $tmp/status || fail "status after Ctrl-C: $(cat $tmp/status)"
-"$S" run --resume $tmp/B $opts >$tmp/B2.out 2>&1 || { cat $tmp/B2.out; fail "resume after Ctrl-C"; }
+# The printed command runs as printed.
+$(sed -n 's/^stopped; continue with: //p' $tmp/B.out) $opts >$tmp/B2.out 2>&1 || { cat $tmp/B2.out; fail "resume after Ctrl-C"; }
 same_study $tmp/A $tmp/B "Ctrl-C"
 
 echo "== 4. export, and a study that starts from it"

@@ -15,6 +15,7 @@
 #include <set>
 #include <vector>
 
+#include "bus/cli.h"
 #include "evolver/arena/children.h"
 #include "evolver/arena/direct_arena.h"
 #include "evolver/arena/episode.h"
@@ -391,7 +392,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   evolve->add_option("--workers", evolve_workers, "local workers (default: one per core)");
   evolve->add_option("--lcm-url", evolve_url, "LCM URL of the farm")->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   if (evolve->parsed()) {
     std::printf("evolution runs through ahhs-evolve, %s workers, seed 1\n",

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "bus/cli.h"
 #include "bus/lcm_bus.h"
 #include "bus/make_bus.h"
 #include "evolver/arena/episode.h"
@@ -54,6 +55,8 @@ int main(int argc, char** argv) {
   app.add_flag("--realtime", realtime,
                "the sim keeps wall-clock pace; modules act on the latest messages");
   app.add_option("--log", log_file, "record the whole episode into this LCM log file");
+  bool overwrite = false;
+  app.add_flag("--overwrite", overwrite, "replace the --log file if it exists");
   app.add_option("--logger", logger,
                  "recorder for --log: ahhs-logger (keeps every message) or lcm-logger (Debian's "
                  "1.3.1 queues only 30 messages and can lose lockstep bursts)")
@@ -72,7 +75,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 600000))
       ->capture_default_str();
   app.add_flag("-v,--verbose", verbose, "show the children's output");
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   al::EpisodeSpec spec;
   try {
@@ -93,6 +96,11 @@ int main(int argc, char** argv) {
     }
     const std::string fit = al::CheckGenomeFits(spec.genome, spec.config);
     if (!fit.empty()) throw std::invalid_argument(genome_file + ": " + fit);
+    if (const std::string exists = ahhs::cli::RefuseExisting({log_file}, overwrite);
+        !exists.empty()) {
+      std::cerr << "ahhs-launch: " << exists << '\n';
+      return ahhs::cli::kExitUsage;
+    }
     if (fused && !log_file.empty())
       throw std::invalid_argument(
           "--log records bus traffic; it needs the process arena, not --fused");

@@ -16,6 +16,8 @@
 #include <lcm/lcm-cpp.hpp>
 #include <string>
 
+#include "bus/cli.h"
+
 namespace {
 
 volatile std::sig_atomic_t g_stop = 0;
@@ -62,7 +64,7 @@ int main(int argc, char** argv) {
   app.add_option("--channel", channel, "channels to record (LCM regular expression)");
   app.add_flag("-f,--force", force, "overwrite FILE if it exists");
   app.add_option("FILE", path, "the log file to write")->required();
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   std::error_code ec;
   if (!force && std::filesystem::exists(path, ec)) {

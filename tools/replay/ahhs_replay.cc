@@ -20,6 +20,7 @@
 #include <optional>
 
 #include "bus/channels.h"
+#include "bus/cli.h"
 #include "bus/codec.h"
 #include "evolver/arena/direct_arena.h"
 #include "evolver/arena/episode.h"
@@ -141,6 +142,8 @@ int main(int argc, char** argv) {
   app.add_option("--mutants", mutants, "evaluate this many single mutants of the genome")
       ->check(CLI::Range(0, 100000));
   app.add_option("--mutants-csv", mutants_csv, "where --mutants writes its results");
+  bool overwrite = false;
+  app.add_flag("--overwrite", overwrite, "replace output files that exist");
   app.add_option("--mutant-seed", mutant_seed, "seed of the mutations")
       ->check(am::SeedTextError)
       ->capture_default_str();
@@ -148,7 +151,7 @@ int main(int argc, char** argv) {
   app.add_option("--mutation-profile", mutation_profile,
                  "operator of the mutants: paper or fine-doses (default: the run's, else paper)")
       ->check(CLI::IsMember({"paper", "fine-doses"}));
-  CLI11_PARSE(app, argc, argv);
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   al::EpisodeSpec spec;
   am::MutationParams mutation;  // of the mutants: the run's, or the paper's
@@ -157,6 +160,12 @@ int main(int argc, char** argv) {
   try {
     if (run_dir.empty() == genome_file.empty())
       throw std::invalid_argument("give either a run directory or --genome FILE");
+    const std::string exists =
+        ahhs::cli::RefuseExisting({log_file, csv_file, rules_csv, mutants_csv}, overwrite);
+    if (!exists.empty()) {
+      std::cerr << "ahhs-replay: " << exists << '\n';
+      return ahhs::cli::kExitUsage;
+    }
     if (mutants > 0 && mutants_csv.empty())
       throw std::invalid_argument("--mutants needs --mutants-csv FILE");
     if (!run_dir.empty()) {
@@ -377,7 +386,7 @@ int main(int argc, char** argv) {
     std::printf("fitness: %s\n", Exact(fitness).c_str());
   } catch (const std::exception& e) {
     std::cerr << "ahhs-replay: " << e.what() << '\n';
-    return 2;
+    return ahhs::cli::kExitFailure;
   }
   return 0;
 }

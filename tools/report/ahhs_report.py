@@ -31,6 +31,10 @@ class ReportError(Exception):
     """A problem with the input; the message is for the user."""
 
 
+class UsageError(Exception):
+    """A usage error: exit 2."""
+
+
 # ---------------------------------------------------------------------------------------------
 # Reading runs
 
@@ -300,9 +304,28 @@ def run_replay(bin_dir, argv):
     return proc.stdout
 
 
+REPORT_FILES = (".png", ".svg", ".dot", ".md", ".csv", ".json", ".lcm", ".mp4")
+
+
+def prepare_out(out, overwrite):
+    """Makes the output directory. An old report in it is replaced only with --overwrite (so
+    that no stale figure survives); a directory holding anything else is never emptied."""
+    if os.path.isdir(out) and os.listdir(out):
+        if not overwrite:
+            raise UsageError(f"{out} holds files; pass --overwrite to replace the report in it")
+        foreign = [f for f in os.listdir(out)
+                   if not (os.path.isfile(os.path.join(out, f)) and f.endswith(REPORT_FILES))]
+        if foreign:
+            raise UsageError(f"{out} holds {foreign[0]}, which is not part of a report; "
+                             "give an empty or new directory")
+        for f in os.listdir(out):
+            os.remove(os.path.join(out, f))
+    os.makedirs(out, exist_ok=True)
+
+
 def report_runs(args):
     runs = [Run(p) for p in args.runs]
-    os.makedirs(args.out, exist_ok=True)
+    prepare_out(args.out, args.overwrite)
     written = []
     groups = OrderedDict()
     for r in runs:
@@ -379,7 +402,7 @@ def report_runs(args):
 
 
 def report_neighbourhood(args):
-    os.makedirs(args.out, exist_ok=True)
+    prepare_out(args.out, args.overwrite)
     bin_dir = find_bin(args)
     csv = os.path.join(args.out, "mutants.csv")
     if os.path.isdir(args.genome):
@@ -439,6 +462,7 @@ def main(argv):
         p.add_argument("--duration", type=float, default=0)
         p.add_argument("--seed", type=int, default=1, help="episode seed (genome files)")
         p.add_argument("-o", "--out", required=True)
+        p.add_argument("--overwrite", action="store_true", help="replace a report in --out")
         p.add_argument("--bin", help="directory of ahhs-replay")
         args = p.parse_args(argv[1:])
         report_neighbourhood(args)
@@ -447,6 +471,7 @@ def main(argv):
                                 description="figures and a summary for ahhs-evolve runs")
     p.add_argument("runs", nargs="+", help="run directories")
     p.add_argument("-o", "--out", required=True, help="output directory")
+    p.add_argument("--overwrite", action="store_true", help="replace a report in --out")
     p.add_argument("--no-replay", action="store_true",
                    help="skip the replay of the best genome (and its per-tick figures)")
     p.add_argument("--bin", help="directory of ahhs-replay")
@@ -457,6 +482,9 @@ def main(argv):
 if __name__ == "__main__":
     try:
         sys.exit(main(sys.argv[1:]))
+    except UsageError as e:
+        print(f"ahhs-report: {e}", file=sys.stderr)
+        sys.exit(2)
     except ReportError as e:
         print(f"ahhs-report: {e}", file=sys.stderr)
         sys.exit(1)

@@ -22,6 +22,7 @@
 #include <map>
 #include <thread>
 
+#include "bus/cli.h"
 #include "evolver/arena/children.h"
 #include "evolver/arena/process_arena.h"
 #include "evolver/store/run_store.h"
@@ -33,9 +34,9 @@ using nlohmann::json;
 
 namespace {
 
-constexpr int kExitFailed = 1;
-constexpr int kExitUsage = 2;
-constexpr int kExitInterrupted = 130;
+using ahhs::cli::kExitFailure;
+using ahhs::cli::kExitInterrupted;
+using ahhs::cli::kExitUsage;
 
 std::atomic<int> g_signals{0};
 void OnSignal(int) { g_signals.fetch_add(1); }
@@ -252,13 +253,14 @@ int RunStudy(const at::StudyDir& study, RunOptions options) {
                 running.size());
     std::fflush(stdout);
     children.StopAll(std::chrono::seconds(30));
-    std::printf("stopped; continue with: ahhs-study run --resume %s\n", study.dir().c_str());
+    std::printf("stopped; continue with: %s/ahhs-study run --resume %s\n",
+                ahhs::arena::ExecutableDir().c_str(), study.dir().c_str());
     return kExitInterrupted;
   }
   if (failed > 0) {
-    std::printf("%d runs failed (see ahhs-study status %s); run --resume to retry them\n", failed,
-                study.dir().c_str());
-    return kExitFailed;
+    std::printf("%d runs failed (see: %s/ahhs-study status %s); run --resume to retry them\n",
+                failed, ahhs::arena::ExecutableDir().c_str(), study.dir().c_str());
+    return kExitFailure;
   }
   std::printf("study complete: %zu runs in %s\n", runs.size(), study.dir().c_str());
   return 0;
@@ -353,12 +355,7 @@ int main(int argc, char** argv) {
   exp->add_option("study", study_dir, "study directory")->required();
   exp->add_option("export", export_dir, "export directory (new, or an export of this study)")
       ->required();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitUsage;
-  }
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   try {
     if (*run) {
@@ -389,7 +386,7 @@ int main(int argc, char** argv) {
     return kExitUsage;
   } catch (const std::exception& e) {
     std::cerr << "ahhs-study: " << e.what() << '\n';
-    return kExitFailed;
+    return kExitFailure;
   }
   return 0;
 }

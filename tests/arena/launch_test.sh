@@ -10,16 +10,13 @@
 #  5. 5 % of messages dropped: the episode completes and reports what was lost;
 #  6. garbage on every channel: counted, ignored, fitness unchanged;
 #  7. real time: a module started late joins the running episode.
-set -uo pipefail
 bin=${1:?usage: launch_test.sh BIN_DIR}
 # Re-run inside a private network namespace (ahhs-netns exits 77, "skipped", where it cannot).
-[[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$0" "$@"
+source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
+ahhs_netns "$0" "$@"
 url="udpm://239.255.42.50:7741?ttl=0&recv_buf_size=4194304"
-tmp=$(mktemp -d)
 # Processes of this test only: its process group (never a run of the same build elsewhere).
-pg=$(ps -o pgid= -p $$ | tr -d ' ')
-trap 'pkill -g "$pg" -f "$bin/ahhs-" 2>/dev/null; rm -rf "$tmp"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+ahhs_scratch 'ahhs-[a-z]+'
 fit() { tail -1 "$1" | sed -n 's/^fitness: //p'; }
 G="$bin/ahhs-genome"
 $G random --variant ahhs2 --hormones 15 --rules 15 --sensors 10 --actuators 2 --seed 1 >$tmp/p2.json

@@ -9,20 +9,11 @@
 #     reports what happened; a worker refuses a request of another protocol version;
 #  4. bad input: an existing run directory, bad options, a directory that is not a run, no
 #     worker at all: clear messages, non-zero exits, nothing overwritten.
-set -uo pipefail
 bin=${1:?usage: evolve_test.sh BIN_DIR}
-[[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$0" "$@"
+source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
+ahhs_netns "$0" "$@"
 url="udpm://239.255.42.60:7751?ttl=0&recv_buf_size=4194304"
-tmp=$(mktemp -d)
-# Processes of this test only: its process group (never a run of the same build elsewhere).
-pg=$(ps -o pgid= -p $$ | tr -d ' ')
-cleanup() {
-  pkill -g "$pg" -KILL -f "$bin/ahhs-(evolve|worker)" 2>/dev/null
-  pkill -g "$pg" -KILL -f "$bin/(bus_peer|farm_peer)" 2>/dev/null
-  rm -rf "$tmp"
-}
-trap cleanup EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+ahhs_scratch 'ahhs-evolve|ahhs-worker|bus_peer|farm_peer'
 E="$bin/ahhs-evolve"
 # Everything that must not depend on the process layout: genomes, seeds, fitness, cost.
 dump() {

@@ -2,15 +2,12 @@
 # ahhs-replay and ahhs-report on small real runs made here (inside a private network namespace):
 # the replay reproduces the stored fitness and records every tick in an LCM log; every figure of
 # the report exists and is not empty; bad input gives a clear message and a non-zero exit.
-set -uo pipefail
 bin=${1:?usage: report_test.sh BIN_DIR}
-[[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$0" "$@"
+source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
+ahhs_netns "$0" "$@"
 url="udpm://239.255.42.80:7771?ttl=0&recv_buf_size=4194304"
-tmp=$(mktemp -d)
 # Processes of this test only: its process group (never a run of the same build elsewhere).
-pg=$(ps -o pgid= -p $$ | tr -d ' ')
-trap 'pkill -g "$pg" -KILL -f "$bin/ahhs-(evolve|worker)" 2>/dev/null; rm -rf "$tmp"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+ahhs_scratch 'ahhs-evolve|ahhs-worker'
 E="$bin/ahhs-evolve"
 common="--population 8 --generations 4 --lcm-url $url --workers 2"
 for seed in 1 2 3; do

@@ -2,11 +2,9 @@
 # The command-line conventions every program shares (docs/development.md, "Exit codes and
 # errors"): --help exits 0; an unknown option, a bad value or an unknown config key exits 2 with
 # one line naming the program, and a mistyped name gets the nearest known one.
-set -uo pipefail
 bin=${1:?usage: cli_test.sh BIN_DIR}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
+ahhs_scratch
 usage_error() {  # usage_error EXPECTED_TEXT PROGRAM ARGS...
   local want=$1; shift
   "$@" >$tmp/out 2>$tmp/err; local rc=$?

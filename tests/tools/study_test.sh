@@ -7,18 +7,11 @@
 #  4. export keeps best genome, generations and summary per run; a new study given the export
 #     runs only what the export lacks, and its runs equal the others bit for bit;
 #  5. status reports every run.
-set -uo pipefail
 bin=${1:?usage: study_test.sh BIN_DIR}
-[[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$0" "$@"
-src=${AHHS_SOURCE_DIR:?}
-tmp=$(mktemp -d)
-pg=$(ps -o pgid= -p $$ | tr -d ' ')
-cleanup() {
-  pkill -g "$pg" -KILL -f "$bin/ahhs-(study|evolve|worker)" 2>/dev/null
-  rm -rf "$tmp"
-}
-trap cleanup EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
+ahhs_netns "$0" "$@"
+ahhs_scratch 'ahhs-study|ahhs-evolve|ahhs-worker'
+src=$AHHS_SOURCE_DIR
 S="$bin/ahhs-study"
 dump() {
   sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, eval_seed, elite,

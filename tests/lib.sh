@@ -1,0 +1,35 @@
+# The prologue the shell tests share. A test starts with
+#   bin=${1:?usage: NAME.sh BIN_DIR}
+#   source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
+#   ahhs_netns "$0" "$@"          # multi-process tests: re-run inside a private network namespace
+#   ahhs_scratch 'ahhs-evolve|ahhs-worker'
+# ahhs_scratch makes $tmp and $pg (the process group) and, on exit, kills this test's own processes (its process group, never
+# a run of the same build elsewhere) whose command matches $bin/(PATTERN), then removes $tmp.
+set -uo pipefail
+
+fail() {
+  echo "FAIL: $*"
+  exit 1
+}
+
+ahhs_netns() {
+  [[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$@"
+}
+
+ahhs_scratch() {
+  tmp=$(mktemp -d)
+  pg=$(ps -o pgid= -p $$ | tr -d ' ')
+  _ahhs_kill=${1:-}
+  trap _ahhs_cleanup EXIT
+}
+
+_ahhs_cleanup() {
+  if [[ -n "$_ahhs_kill" ]]; then pkill -g "$pg" -KILL -f "$bin/($_ahhs_kill)" 2>/dev/null; fi
+  rm -rf "$tmp"
+}
+
+# wait_for_file PATH: up to 4 s for PATH to appear.
+wait_for_file() {
+  for _ in $(seq 200); do [[ -e "$1" ]] && return 0; sleep 0.02; done
+  fail "no $1"
+}

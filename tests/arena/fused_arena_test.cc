@@ -115,8 +115,8 @@ TEST_CASE("fused arena equals the in-process loop, bit for bit", "[arena]") {
 
 TEST_CASE("late copies of RESET and GENOME change nothing in a running episode", "[arena]") {
   // The launcher repeats RESET and GENOME until everyone answered; over a network a repeat can
-  // arrive after START. Until 2026-11-22 a module rebuilt its controller from it, which wiped
-  // its hormones mid-episode.
+  // arrive after START. Rebuilding the controller from it would wipe the module's hormones
+  // mid-episode.
   const Episode e{"gait", 4, 5.0, 6};
   auto scenario = sim::MakeScenario(ConfigOf(e));
   modules::Rng rng(66);

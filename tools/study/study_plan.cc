@@ -176,7 +176,8 @@ std::string ResolvedConfigToml(const StudyConfig& config) {
     table.insert_or_assign(key, *one.get(key));
   }
   std::ostringstream out;
-  out << "# " << config.name << ": " << config.preset << " with the plan's overrides\n"
+  out << "# " << config.name << ": " << fs::path(config.preset).filename().string()
+      << " with the plan's overrides\n"
       << table << '\n';
   return out.str();
 }

@@ -291,7 +291,11 @@ void SimNode::PublishClock(std::int8_t run_state) {
 void SimNode::PublishState(double sim_time) {
   scenario_->Bodies(&bodies_);
   KeepMovingBodies(&bodies_);
-  FillStateMessage(bodies_, episode_, scenario_->tick(), sim_time, &state_msg_);
+  // `tick`: control periods done at the snapshot (the state after tick t has t + 1; during a
+  // step, scenario_->tick() still counts the step in progress as not done).
+  const auto done =
+      static_cast<std::int64_t>(std::floor(sim_time / scenario_->control_period() + 1e-9));
+  FillStateMessage(bodies_, episode_, done, sim_time, &state_msg_);
   state_msg_.utime = bus::NowUtime();
   bus::PublishTyped(*bus_, state_channel_, state_msg_);
 }

@@ -81,8 +81,9 @@ TEST_CASE("lockstep over the bus equals the same policy run in-process, bit for 
       bus, "AHHS/SIM/STATE", [&](const std::string&, const sim_state_t& m) {
         ++states;
         CHECK(m.sim_time >= last_state_time);
-        // on a tick boundary
+        // on a tick boundary, numbered by the control periods done (as ahhs-replay logs it)
         CHECK(std::fabs(m.sim_time / kPeriod - std::round(m.sim_time / kPeriod)) < 1e-6);
+        CHECK(m.tick == std::llround(m.sim_time / kPeriod));
         last_state_time = m.sim_time;
         REQUIRE(m.num_bodies == 2);
         CHECK(m.module[0] == 0);

@@ -237,8 +237,12 @@ int main(int argc, char** argv) {
     std::vector<std::vector<std::uint64_t>> last_activity;
     std::int64_t last_utime = 0;
     std::vector<ahhs::sim::BodyState> bodies;
+    std::int64_t ticks_done = 0;
+    double period = 0;
     const al::DirectObserver observer = [&](const al::DirectTick& t) {
       const auto& sc = *t.scenario;
+      ticks_done = t.tick + 1;
+      period = sc.control_period();
       const double time = static_cast<double>(t.tick + 1) * sc.control_period();
       const auto utime = static_cast<std::int64_t>(std::llround(time * 1e6));
       last_utime = utime;
@@ -333,6 +337,11 @@ int main(int argc, char** argv) {
       f.episode = spec.episode;
       f.is_final = true;
       f.status = result.ok ? ahhs::fitness_t::OK : ahhs::fitness_t::ERROR;
+      // As the live monitor reports it: the last state's tick, every state seen.
+      f.tick = ticks_done;
+      f.sim_time = static_cast<double>(ticks_done) * period;
+      f.states_seen = static_cast<std::int32_t>(ticks_done);
+      f.states_missed = 0;
       f.fitness = result.ok ? result.fitness : 0;
       f.cost = result.cost;
       f.message = result.error;

@@ -274,10 +274,11 @@ int main(int argc, char** argv) {
   int restarts = 0;
   const std::string worker_bin = ahhs::arena::ExecutableDir() + "/ahhs-worker";
   for (int k = 0; k < workers && first < config.ga.generations; ++k)
-    local.Start("local worker " + std::to_string(k),
-                {worker_bin, "--quiet", "--lcm-url", url, "--arena", arena, "--id",
-                 HostName() + ":" + std::to_string(getpid()) + "/w" + std::to_string(k)},
-                true);
+    local.Start(
+        "local worker " + std::to_string(k),
+        {worker_bin, "--quiet", "--lcm-url", url, "--arena", arena, "--run", store->run_id(),
+         "--id", HostName() + ":" + std::to_string(getpid()) + "/w" + std::to_string(k)},
+        true);
 
   Progress progress(first, config.ga.generations);
   std::printf("run directory: %s\n", dir.c_str());
@@ -292,8 +293,10 @@ int main(int argc, char** argv) {
               config.ga.population, config.ga.generations,
               static_cast<unsigned long long>(config.seed),
               first > 0 ? (", resuming at generation " + std::to_string(first)).c_str() : "");
-  std::printf("workers: %d local (%s arena)%s\n", static_cast<int>(local.size()), arena.c_str(),
-              workers == 0 ? ", waiting for external ones" : "");
+  std::printf("workers: %d local (%s arena)%s; more: %s/ahhs-worker --lcm-url '%s' --run %s\n",
+              static_cast<int>(local.size()), arena.c_str(),
+              workers == 0 ? ", waiting for external ones" : "",
+              ahhs::arena::ExecutableDir().c_str(), url.c_str(), store->run_id().c_str());
   std::fflush(stdout);
 
   int exit_code = 0;

@@ -53,7 +53,12 @@ int main(int argc, char** argv) {
   std::string url = ahhs::bus::kDefaultLcmUrl, arena = "direct", id,
               arena_url = ahhs::bus::kDefaultLcmUrl;
   int slots = 1;
-  bool verbose = false, quiet = false;
+  bool verbose = false, quiet = false, any_run = false;
+  std::string run;
+  auto* run_option = app.add_option(
+      "--run", run, "serve this run only (its id, which ahhs-evolve prints); runs are isolated");
+  app.add_flag("--any-run", any_run, "serve every run on this bus (a shared farm)")
+      ->excludes(run_option);
   app.add_option("--lcm-url", url, "LCM URL of the evaluation farm (ttl=1 to serve a LAN)")
       ->capture_default_str();
   app.add_option("--slots", slots, "evaluations at once (one worker process each)")
@@ -71,6 +76,11 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", quiet, "print errors only");
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
+  if (run.empty() && !any_run) {
+    std::cerr << "ahhs-worker: say which run to serve: --run RUN_ID (ahhs-evolve prints it) or "
+                 "--any-run\n";
+    return ahhs::cli::kExitUsage;
+  }
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
   const std::string host = HostName();
@@ -90,6 +100,10 @@ int main(int argc, char** argv) {
           "--id",
           (id.empty() ? host + ":" + std::to_string(getpid()) : id) + "/" + std::to_string(k)};
       if (arena_url_option->count() > 0) args.insert(args.end(), {"--arena-url", arena_url});
+      if (any_run)
+        args.push_back("--any-run");
+      else
+        args.insert(args.end(), {"--run", run});
       if (verbose) args.push_back("--verbose");
       if (quiet) args.push_back("--quiet");
       children.Start("slot " + std::to_string(k), args, false);
@@ -127,7 +141,9 @@ int main(int argc, char** argv) {
       return out;
     });
     if (!quiet)
-      std::cerr << "ahhs-worker " << id << ": serving (" << arena << " arena) on " << url << '\n';
+      std::cerr << "ahhs-worker " << id << ": serving " << (run.empty() ? "any run" : "run " + run)
+                << " (" << arena << " arena) on " << url << '\n';
+    if (!run.empty()) node.ServeOnlyRun(run);
     node.Serve([&] { return g_stop.load(); });
     const auto& c = node.counters();
     if (!quiet)

@@ -70,10 +70,10 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
       if (now - w.heard > options_.lease.worker_silence || quarantined_.count(name)) continue;
       std::vector<std::int64_t> ours;
       int others = 0;
-      if (w.status.run == options_.run)
+      if (SameRun(w.status.run, options_.run))
         ours = w.status.jobs;
-      else
-        others = static_cast<int>(w.status.jobs.size());
+      else if (!w.status.run.empty())  // busy with, or dedicated to, another run
+        others = std::max(static_cast<int>(w.status.jobs.size()), w.status.slots);
       table.OnWorkerStatus(name, w.status.slots, ours, others, w.heard);
     }
     for (const auto& r : table.Expire(now)) {

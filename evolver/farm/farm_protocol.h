@@ -16,6 +16,13 @@ namespace ahhs::evolver {
 // version; evolvers ignore workers of another version (both say so).
 inline constexpr int kFarmProtocolVersion = 1;
 
+// A run on the wire is "RUN_ID/sSESSION" (ahhs-evolve). A worker that serves one run only names
+// its RUN_ID in every status; a status's run matches a wire run when it is the same or its id.
+inline bool SameRun(const std::string& status_run, const std::string& wire_run) {
+  return status_run == wire_run ||
+         (!status_run.empty() && wire_run.rfind(status_run + "/", 0) == 0);
+}
+
 struct EvalJob {
   int protocol_version = kFarmProtocolVersion;
   std::string run;  // run id on the wire (unique per evolver session)

@@ -41,6 +41,13 @@ void WorkerNode::OnRequest(const eval_request_t& msg) {
     bus::PublishTyped(*bus_, bus::kEvalResultChannel, ResultMessage(answer));
     return;
   }
+  if (!serve_run_.empty() && !SameRun(serve_run_, msg.run)) {
+    ++counters_.refused;
+    answer.status = EvalOutcome::Status::kRefused;
+    answer.message = "worker " + id_ + " serves run " + serve_run_ + " only";
+    bus::PublishTyped(*bus_, bus::kEvalResultChannel, ResultMessage(answer));
+    return;
+  }
   if (!seen_.insert({msg.run, msg.job, msg.attempt}).second) return;  // a repeat
   EvalJob job;
   const std::string error = JobFromMessage(msg, &job);
@@ -71,6 +78,7 @@ void WorkerNode::PublishStatus() {
     if (s.run.empty()) s.run = j.run;
     if (j.run == s.run) s.jobs.push_back(j.job);
   }
+  if (s.run.empty()) s.run = serve_run_;
   bus::PublishTyped(*bus_, bus::kWorkerStatusChannel, StatusMessage(s));
   last_status_ = std::chrono::steady_clock::now();
 }

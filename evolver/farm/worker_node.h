@@ -22,7 +22,7 @@ namespace ahhs::evolver {
 
 struct WorkerCounters {
   std::int64_t evaluations = 0;
-  std::int64_t refused = 0;       // requests of another protocol version
+  std::int64_t refused = 0;       // requests of another protocol version or another run
   std::int64_t bad_requests = 0;  // addressed to us but unusable (bad scenario or genome)
   bus::DecodeCounters requests;   // garbage on EVAL/REQUEST is counted here and dropped
 };
@@ -43,6 +43,10 @@ class WorkerNode {
   // One round: handle messages for at most `wait`, evaluate one queued job if any, heartbeat.
   void Poll(std::chrono::microseconds wait);
 
+  // Serve the run with this id only (ahhs-worker --run): requests of other runs are refused, and
+  // every status names the run, so that other evolvers pass this worker over. "" = any run.
+  void ServeOnlyRun(std::string run_id) { serve_run_ = std::move(run_id); }
+
   const WorkerCounters& counters() const { return counters_; }
   const std::string& id() const { return id_; }
 
@@ -58,6 +62,7 @@ class WorkerNode {
   std::deque<EvalJob> queue_;
   std::int64_t current_job_ = -1;
   std::string current_run_;
+  std::string serve_run_;  // "" = any run
   // (run, job, attempt) already taken: a repeated request is not evaluated twice.
   std::set<std::tuple<std::string, std::int64_t, int>> seen_;
   WorkerCounters counters_;

@@ -8,7 +8,9 @@
 #     version, garbage on every farm channel: the run completes with identical results and
 #     reports what happened; a worker refuses a request of another protocol version;
 #  4. bad input: an existing run directory, bad options, a directory that is not a run, no
-#     worker at all: clear messages, non-zero exits, nothing overwritten.
+#     worker at all: clear messages, non-zero exits, nothing overwritten;
+#  5. runs are isolated: two runs on one bus never use each other's local workers, a worker
+#     told to serve another run is passed over, and a worker must be told what to serve.
 bin=${1:?usage: evolve_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_netns "$0" "$@"
@@ -104,11 +106,11 @@ $E --resume $tmp/ctrlc >$tmp/again.out 2>&1 || fail "resume of a finished run"
 grep -q "already complete" $tmp/again.out || fail "finished run: $(cat $tmp/again.out)"
 
 echo "== 3. external workers and faults"
-"$bin/ahhs-worker" --lcm-url "$url" --id steady >$tmp/w1.out 2>&1 &
+"$bin/ahhs-worker" --lcm-url "$url" --any-run --id steady >$tmp/w1.out 2>&1 &
 w1=$!
-"$bin/ahhs-worker" --lcm-url "$url" --id doomed >$tmp/w2.out 2>&1 &
+"$bin/ahhs-worker" --lcm-url "$url" --any-run --id doomed >$tmp/w2.out 2>&1 &
 w2=$!
-AHHS_WORKER_FAULT=nan "$bin/ahhs-worker" --lcm-url "$url" --id liar >$tmp/w3.out 2>&1 &
+AHHS_WORKER_FAULT=nan "$bin/ahhs-worker" --lcm-url "$url" --any-run --id liar >$tmp/w3.out 2>&1 &
 w3=$!
 "$bin/farm_peer" --role foreign-worker --lcm-url "$url" --seconds 60 >/dev/null 2>&1 &
 "$bin/bus_peer" --role spam --lcm-url "$url" --channels "EVAL/REQUEST,EVAL/RESULT,WORKER/STATUS" --seconds 60 >$tmp/spam.out 2>&1 &
@@ -157,4 +159,21 @@ rc=$?
 [[ $rc == 1 ]] || fail "no worker: exit $rc"
 grep -q "no evaluation worker has answered" $tmp/out || fail "no-worker message: $(cat $tmp/out)"
 grep -q "continue with: $E --resume $tmp/noworker" $tmp/out || fail "no resume hint"
+
+echo "== 5. runs are isolated"
+"$bin/ahhs-worker" --lcm-url "$url" --id stranger --run someone-else >$tmp/stranger.out 2>&1 &
+$E $pend --out $tmp/iso-a --workers 1 >$tmp/iso-a.out 2>&1 &
+a=$!
+$E $pend --out $tmp/iso-b --workers 1 >$tmp/iso-b.out 2>&1 || fail "run b: $(cat $tmp/iso-b.out)"
+wait $a || fail "run a: $(cat $tmp/iso-a.out)"
+wa=$(sqlite3 $tmp/iso-a/run.sqlite "SELECT DISTINCT worker FROM individuals")
+wb=$(sqlite3 $tmp/iso-b/run.sqlite "SELECT DISTINCT worker FROM individuals")
+[[ $(echo "$wa" | wc -l) == 1 && $(echo "$wb" | wc -l) == 1 && "$wa" != "$wb" ]] ||
+  fail "runs shared workers: a: $wa; b: $wb"
+same_run $tmp/p-direct-1 $tmp/iso-a "isolated run a"
+grep -q -- "--run $(sqlite3 $tmp/iso-a/run.sqlite "SELECT value FROM run WHERE key = 'run_id'")" $tmp/iso-a.out ||
+  fail "no command for more workers: $(cat $tmp/iso-a.out)"
+"$bin/ahhs-worker" --lcm-url "$url" >$tmp/out 2>&1; rc=$?
+[[ $rc == 2 ]] && grep -q "say which run to serve" $tmp/out || fail "worker without --run: $rc $(cat $tmp/out)"
+echo "each run used its own worker only ($wa; $wb), the stranger none"
 echo "PASS"

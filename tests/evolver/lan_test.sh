@@ -52,8 +52,8 @@ in_host ${hosts[0]} "$bin/ahhs-evolve" $args --out $tmp/one --workers 2 >$tmp/on
   { cat $tmp/one.out; fail "one-host run"; }
 
 echo "== LAN: workers on hosts 1 and 2 only"
-in_host ${hosts[1]} "$bin/ahhs-worker" --lcm-url "$url" --id host1 >$tmp/w1.out 2>&1 &
-in_host ${hosts[2]} "$bin/ahhs-worker" --lcm-url "$url" --id host2 >$tmp/w2.out 2>&1 &
+in_host ${hosts[1]} "$bin/ahhs-worker" --lcm-url "$url" --any-run --id host1 >$tmp/w1.out 2>&1 &
+in_host ${hosts[2]} "$bin/ahhs-worker" --lcm-url "$url" --any-run --id host2 >$tmp/w2.out 2>&1 &
 in_host ${hosts[0]} timeout 300 "$bin/ahhs-evolve" $args --out $tmp/lan --workers 0 --worker-wait 20 >$tmp/lan.out 2>&1 ||
   { cat $tmp/lan.out; fail "LAN run"; }
 dump $tmp/one >$tmp/one.dump

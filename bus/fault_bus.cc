@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "bus/make_bus.h"
+#include "bus/open_bus.h"
 
 namespace ahhs::bus {
 
@@ -24,7 +24,7 @@ int FaultBus::Subscribe(const std::string& channel_regex, RawHandler handler, in
       queue_capacity);
 }
 
-std::unique_ptr<Bus> MakeBus(const std::string& url) {
+std::unique_ptr<Bus> OpenBusWithFaultInjection(const std::string& url) {
   auto bus = OpenBus(url);
   const char* drop = std::getenv("AHHS_FAULT_DROP");
   if (drop == nullptr || *drop == '\0') return bus;

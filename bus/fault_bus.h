@@ -1,6 +1,7 @@
 // Fault injection for tests: a Bus that loses a fraction of the messages it receives, with a
-// seeded generator so a test run is repeatable. Every executable builds its bus with MakeBus(),
-// which wraps the bus of its URL in a FaultBus when the environment asks for it:
+// seeded generator so a test run is repeatable. Every executable builds its bus with
+// OpenBusWithFaultInjection(), which wraps the bus of its URL in a FaultBus when the environment
+// asks for it:
 //   AHHS_FAULT_DROP=0.05   drop 5 % of received messages (per subscription delivery)
 //   AHHS_FAULT_SEED=7      seed of the drop decisions (default 1)
 #pragma once
@@ -33,9 +34,9 @@ class FaultBus final : public Bus {
   std::uint64_t dropped_ = 0;
 };
 
-// The bus for `url` (OpenBus, bus/make_bus.h), wrapped in a FaultBus when AHHS_FAULT_DROP is
+// The bus for `url` (OpenBus, bus/open_bus.h), wrapped in a FaultBus when AHHS_FAULT_DROP is
 // set (see above).
 // Throws BusError for a bad URL or a bad AHHS_FAULT_DROP value.
-std::unique_ptr<Bus> MakeBus(const std::string& url);
+std::unique_ptr<Bus> OpenBusWithFaultInjection(const std::string& url);
 
 }  // namespace ahhs::bus

@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
   app.add_option("--workers", workers,
                  "local worker processes to start (default: one per core; 0: only external)")
       ->check(CLI::Range(0, 256));
-  app.add_option("--arena", arena, "how local workers evaluate: direct, fused or processes")
+  app.add_option("--arena-kind", arena, "how local workers evaluate: direct, fused or processes")
       ->check(CLI::IsMember({"direct", "fused", "processes"}))
       ->capture_default_str();
   app.add_option("--lcm-url", url, "LCM URL of the evaluation farm (ttl=1 to use LAN workers)")
@@ -276,7 +276,7 @@ int main(int argc, char** argv) {
   for (int k = 0; k < workers && first < config.ga.generations; ++k)
     local.Start(
         "local worker " + std::to_string(k),
-        {worker_bin, "--quiet", "--lcm-url", url, "--arena", arena, "--run", store->run_id(),
+        {worker_bin, "--quiet", "--lcm-url", url, "--arena-kind", arena, "--run", store->run_id(),
          "--id", HostName() + ":" + std::to_string(getpid()) + "/w" + std::to_string(k)},
         true);
 
@@ -301,7 +301,7 @@ int main(int argc, char** argv) {
 
   int exit_code = 0;
   try {
-    auto bus = ahhs::bus::MakeBus(url);
+    auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
     ev::FarmOptions options;
     options.run = wire_run;
     options.config = config.scenario;

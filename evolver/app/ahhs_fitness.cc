@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
   try {
-    auto bus = ahhs::bus::MakeBus(url);
+    auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
     ahhs::evolver::FitnessNode node(bus.get(), arena);
     std::signal(SIGINT, OnSignal);
     std::signal(SIGTERM, OnSignal);

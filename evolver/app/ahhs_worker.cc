@@ -64,12 +64,12 @@ int main(int argc, char** argv) {
   app.add_option("--slots", slots, "evaluations at once (one worker process each)")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
-  app.add_option("--arena", arena, "how to evaluate: direct, fused or processes")
+  app.add_option("--arena-kind", arena, "how to evaluate: direct, fused or processes")
       ->check(CLI::IsMember({"direct", "fused", "processes"}))
       ->capture_default_str();
   auto* arena_url_option =
       app.add_option("--arena-url", arena_url,
-                     "LCM URL of the process arena's own traffic (--arena processes; default: "
+                     "LCM URL of the process arena's own traffic (--arena-kind processes; default: "
                      "host-only multicast on a port of this worker's own)");
   app.add_option("--id", id, "worker id, unique on the bus (default: host:pid)");
   app.add_flag("-v,--verbose", verbose, "print a line per evaluation");
@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
           self,
           "--lcm-url",
           url,
-          "--arena",
+          "--arena-kind",
           arena,
           "--id",
           (id.empty() ? host + ":" + std::to_string(getpid()) : id) + "/" + std::to_string(k)};
@@ -131,9 +131,9 @@ int main(int argc, char** argv) {
     arena_options.url = arena_url;
     arena_options.name = "W" + std::to_string(getpid());
     ev::ArenaEvaluator evaluator(arena_options);
-    auto bus = ahhs::bus::MakeBus(url);
-    ev::WorkerNode node(bus.get(), id, host, [&](const ev::EvalJob& job) {
-      ev::EvalOutcome out = evaluator.Evaluate(job);
+    auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
+    ev::WorkerNode node(bus.get(), id, host, [&](const ev::FarmJob& job) {
+      ev::FarmResult out = evaluator.Evaluate(job);
       if (fault_mode == "nan") out.fitness = std::numeric_limits<double>::quiet_NaN();
       if (verbose)
         std::cout << "job " << job.job << " attempt " << job.attempt << ": fitness " << out.fitness

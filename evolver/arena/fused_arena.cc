@@ -3,7 +3,7 @@
 #include <memory>
 #include <vector>
 
-#include "bus/make_bus.h"
+#include "bus/open_bus.h"
 #include "evolver/arena/launcher_role.h"
 #include "evolver/fitness/fitness_node.h"
 #include "modules/node/module_node.h"

@@ -62,7 +62,7 @@ ProcessArena::ProcessArena(ProcessArenaOptions options) : options_(std::move(opt
                       quiet);
     // Our own bus is opened after the children are forked, so that no child inherits its
     // sockets.
-    bus_ = bus::MakeBus(url);
+    bus_ = bus::OpenBusWithFaultInjection(url);
   } catch (...) {
     children_.StopAll(std::chrono::seconds(3));
     throw;

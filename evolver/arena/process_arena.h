@@ -1,6 +1,6 @@
 // An arena of separate processes: ahhs-sim, ahhs-fitness and one ahhs-module per compartment,
 // started once and serving episode after episode on one bus (docs/protocol.md). Used by
-// ahhs-launch for one episode and by ahhs-worker --arena processes for many. Children die with
+// ahhs-launch for one episode and by ahhs-worker --arena-kind processes for many. Children die with
 // this process (PR_SET_PDEATHSIG) and are stopped (SIGTERM, then SIGKILL) by the destructor.
 #pragma once
 

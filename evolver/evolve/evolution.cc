@@ -97,15 +97,10 @@ bool RunEvolution(RunStore& store, const EvolveConfig& config, FitnessEvaluator&
   for (int g = last + 1; g < ga.generations; ++g) {
     if (hooks.stop()) return false;
     const double start = seconds();
-    population = g == 0 ? InitialPopulation(config.shape(), ga, config.seed)
-                        : Breed(population, fitness, ga, config.seed, g);
+    const std::vector<modules::Genome> parents = std::move(population);
     std::vector<EvaluationJob> jobs;
-    for (int i = 0; i < ga.population; ++i)
-      jobs.push_back(
-          {g, i, &population[static_cast<std::size_t>(i)], EvaluationSeed(config.seed, g, i)});
-    const std::vector<Evaluation> results = evaluator.Evaluate(jobs);
-    if (results.size() != jobs.size())
-      throw std::runtime_error("the evaluator returned the wrong number of results");
+    const std::vector<Evaluation> results = StepGeneration(
+        config.shape(), ga, config.seed, g, parents, fitness, evaluator, &population, &jobs);
     std::vector<IndividualRecord> records;
     fitness.clear();
     for (int i = 0; i < ga.population; ++i) {

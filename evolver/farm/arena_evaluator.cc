@@ -8,7 +8,7 @@ ArenaEvaluator::ArenaEvaluator(arena::ArenaOptions options) : options_(std::move
 
 ArenaEvaluator::~ArenaEvaluator() = default;
 
-EvalOutcome ArenaEvaluator::Evaluate(const EvalJob& job) {
+FarmResult ArenaEvaluator::Evaluate(const FarmJob& job) {
   arena::EpisodeSpec spec;
   spec.config = job.config;
   spec.genome = job.genome;
@@ -17,10 +17,10 @@ EvalOutcome ArenaEvaluator::Evaluate(const EvalJob& job) {
   spec.episode = static_cast<std::int64_t>(getpid()) * 1000000 + ++episodes_;
   spec.arena = options_.name;
   spec.episode_timeout = std::chrono::seconds(600);
-  EvalOutcome out;
+  FarmResult out;
   const std::string fit = arena::CheckGenomeFits(job.genome, job.config);
   if (!fit.empty()) {
-    out.status = EvalOutcome::Status::kError;
+    out.status = FarmResult::Status::kError;
     out.message = fit;
     return out;
   }
@@ -30,7 +30,7 @@ EvalOutcome ArenaEvaluator::Evaluate(const EvalJob& job) {
     try {
       arena_ = arena::MakeArena(options_, job.config);
     } catch (const std::exception& e) {
-      out.status = EvalOutcome::Status::kError;
+      out.status = FarmResult::Status::kError;
       out.message = e.what();
       return out;
     }
@@ -38,16 +38,16 @@ EvalOutcome ArenaEvaluator::Evaluate(const EvalJob& job) {
   }
   const arena::EpisodeResult r = arena_->Run(spec);
   if (r.ok) {
-    out.status = EvalOutcome::Status::kOk;
+    out.status = FarmResult::Status::kOk;
     out.fitness = r.fitness;
     out.cost = r.cost;
-    out.late_messages = r.states_missed;
+    out.states_missed = r.states_missed;
   } else if (r.episode_failed) {
-    out.status = EvalOutcome::Status::kOk;
+    out.status = FarmResult::Status::kOk;
     out.fitness = kFailedEpisodeFitness;
     out.message = "episode failed: " + r.error;
   } else {
-    out.status = EvalOutcome::Status::kError;
+    out.status = FarmResult::Status::kError;
     out.message = r.error;
   }
   return out;

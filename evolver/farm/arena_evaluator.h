@@ -22,7 +22,7 @@ class ArenaEvaluator {
   ArenaEvaluator(const ArenaEvaluator&) = delete;
   ArenaEvaluator& operator=(const ArenaEvaluator&) = delete;
 
-  EvalOutcome Evaluate(const EvalJob& job);
+  FarmResult Evaluate(const FarmJob& job);
 
  private:
   arena::ArenaOptions options_;

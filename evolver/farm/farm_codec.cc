@@ -8,7 +8,7 @@
 
 namespace ahhs::evolver {
 
-eval_request_t RequestMessage(const EvalJob& job) {
+eval_request_t RequestMessage(const FarmJob& job) {
   eval_request_t m;
   m.utime = bus::NowUtime();
   m.protocol_version = job.protocol_version;
@@ -19,12 +19,12 @@ eval_request_t RequestMessage(const EvalJob& job) {
   sim::ScenarioToWire(job.config, &m);
   m.seed = static_cast<std::int64_t>(job.seed);
   m.deadline_utime = job.deadline_utime;
-  m.genome = modules::GenomeMessage(job.genome, job.job);
+  m.genome = modules::GenomeMessage(job.genome, 0);  // the job id travels in `job`
   return m;
 }
 
-std::string JobFromMessage(const eval_request_t& m, EvalJob* out) {
-  EvalJob job;
+std::string JobFromMessage(const eval_request_t& m, FarmJob* out) {
+  FarmJob job;
   job.protocol_version = m.protocol_version;
   job.run = m.run;
   job.job = m.job;
@@ -40,7 +40,7 @@ std::string JobFromMessage(const eval_request_t& m, EvalJob* out) {
   return "";
 }
 
-eval_result_t ResultMessage(const EvalOutcome& o) {
+eval_result_t ResultMessage(const FarmResult& o) {
   eval_result_t m;
   m.utime = bus::NowUtime();
   m.protocol_version = o.protocol_version;
@@ -48,31 +48,31 @@ eval_result_t ResultMessage(const EvalOutcome& o) {
   m.job = o.job;
   m.attempt = o.attempt;
   m.worker = o.worker;
-  m.status = o.status == EvalOutcome::Status::kOk      ? eval_result_t::OK
-             : o.status == EvalOutcome::Status::kError ? eval_result_t::ERROR
-                                                       : eval_result_t::REFUSED;
+  m.status = o.status == FarmResult::Status::kOk      ? eval_result_t::OK
+             : o.status == FarmResult::Status::kError ? eval_result_t::ERROR
+                                                      : eval_result_t::REFUSED;
   m.fitness = o.fitness;
   m.cost = o.cost;
   m.wall_time = o.wall_time;
-  m.late_messages = o.late_messages;
+  m.late_messages = o.states_missed;  // the wire keeps its first name
   m.message = o.message;
   return m;
 }
 
-EvalOutcome OutcomeFromMessage(const eval_result_t& m) {
-  EvalOutcome o;
+FarmResult OutcomeFromMessage(const eval_result_t& m) {
+  FarmResult o;
   o.protocol_version = m.protocol_version;
   o.run = m.run;
   o.job = m.job;
   o.attempt = m.attempt;
   o.worker = m.worker;
-  o.status = m.status == eval_result_t::OK      ? EvalOutcome::Status::kOk
-             : m.status == eval_result_t::ERROR ? EvalOutcome::Status::kError
-                                                : EvalOutcome::Status::kRefused;
+  o.status = m.status == eval_result_t::OK      ? FarmResult::Status::kOk
+             : m.status == eval_result_t::ERROR ? FarmResult::Status::kError
+                                                : FarmResult::Status::kRefused;
   o.fitness = m.fitness;
   o.cost = m.cost;
   o.wall_time = m.wall_time;
-  o.late_messages = m.late_messages;
+  o.states_missed = m.late_messages;
   o.message = m.message;
   return o;
 }

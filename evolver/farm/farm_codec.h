@@ -10,13 +10,13 @@
 
 namespace ahhs::evolver {
 
-eval_request_t RequestMessage(const EvalJob& job);
+eval_request_t RequestMessage(const FarmJob& job);
 // Decodes and validates (scenario, genome). Returns "" or why the request is unusable. The
 // protocol version is copied, not checked: the worker answers a foreign version itself.
-std::string JobFromMessage(const eval_request_t& msg, EvalJob* out);
+std::string JobFromMessage(const eval_request_t& msg, FarmJob* out);
 
-eval_result_t ResultMessage(const EvalOutcome& outcome);
-EvalOutcome OutcomeFromMessage(const eval_result_t& msg);
+eval_result_t ResultMessage(const FarmResult& outcome);
+FarmResult OutcomeFromMessage(const eval_result_t& msg);
 
 worker_status_t StatusMessage(const WorkerStatus& status);
 WorkerStatus StatusFromMessage(const worker_status_t& msg);

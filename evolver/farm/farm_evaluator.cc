@@ -83,7 +83,7 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
     }
     for (const Dispatch& d : table.Schedule(now)) {
       const EvaluationJob& j = jobs[slot_of.at(d.job)];
-      EvalJob job;
+      FarmJob job;
       job.run = options_.run;
       job.job = d.job;
       job.attempt = d.attempt;
@@ -111,14 +111,14 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
     }
     bus_->Handle(std::chrono::milliseconds(20));
     const auto heard = FarmClock::now();
-    for (const EvalOutcome& o : inbox_) {
+    for (const FarmResult& o : inbox_) {
       auto slot = slot_of.find(o.job);
       if (slot == slot_of.end()) {
         ++counters_.duplicates;
         continue;
       }
       const bool valid =
-          o.status == EvalOutcome::Status::kOk && std::isfinite(o.fitness) && std::isfinite(o.cost);
+          o.status == FarmResult::Status::kOk && std::isfinite(o.fitness) && std::isfinite(o.cost);
       const auto verdict = table.OnResult(o.job, o.attempt, o.worker, valid, heard);
       switch (verdict) {
         case LeaseTable::Verdict::kAccepted: {
@@ -129,7 +129,7 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
           e.attempt = o.attempt;
           e.wall_time = o.wall_time;
           e.message = o.message;
-          counters_.late_messages += o.late_messages;
+          counters_.states_missed += o.states_missed;
           break;
         }
         case LeaseTable::Verdict::kIgnored:
@@ -139,9 +139,9 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
         case LeaseTable::Verdict::kFailed: {
           ++counters_.invalid_results;
           const std::string what =
-              o.status == EvalOutcome::Status::kOk
+              o.status == FarmResult::Status::kOk
                   ? "a non-finite fitness"
-                  : (o.status == EvalOutcome::Status::kRefused ? "a refusal: " : "an error: ") +
+                  : (o.status == FarmResult::Status::kRefused ? "a refusal: " : "an error: ") +
                         o.message;
           hooks_.report("worker " + o.worker + " returned " + what + " for job " +
                         std::to_string(o.job) +

@@ -49,7 +49,7 @@ struct FarmCounters {
   std::int64_t reissued = 0;              // leases ended without a valid result
   std::int64_t invalid_results = 0;       // error status or non-finite fitness
   std::int64_t duplicates = 0;            // results ignored (late, repeated, unknown)
-  std::int64_t late_messages = 0;         // reported by process arenas
+  std::int64_t states_missed = 0;         // reported by process arenas
   bus::DecodeCounters results, statuses;  // garbage on the farm channels is dropped here
 };
 
@@ -98,7 +98,7 @@ class FarmEvaluator : public FitnessEvaluator {
   std::set<std::string> refused_;
   std::map<std::string, int> invalid_by_worker_;
   std::set<std::string> quarantined_;
-  std::vector<EvalOutcome> inbox_;  // results received during the current Handle()
+  std::vector<FarmResult> inbox_;  // results received during the current Handle()
 };
 
 }  // namespace ahhs::evolver

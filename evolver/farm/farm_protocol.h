@@ -23,7 +23,7 @@ inline bool SameRun(const std::string& status_run, const std::string& wire_run) 
          (!status_run.empty() && wire_run.rfind(status_run + "/", 0) == 0);
 }
 
-struct EvalJob {
+struct FarmJob {
   int protocol_version = kFarmProtocolVersion;
   std::string run;  // run id on the wire (unique per evolver session)
   std::int64_t job = 0;
@@ -35,7 +35,7 @@ struct EvalJob {
   modules::Genome genome;
 };
 
-struct EvalOutcome {
+struct FarmResult {
   enum class Status { kOk, kError, kRefused };
   int protocol_version = kFarmProtocolVersion;
   std::string run;
@@ -45,8 +45,8 @@ struct EvalOutcome {
   Status status = Status::kOk;
   double fitness = 0;
   double cost = 0;
-  double wall_time = 0;  // seconds
-  int late_messages = 0;
+  double wall_time = 0;   // seconds
+  int states_missed = 0;  // ticks whose state the fitness monitor missed (process arenas)
   std::string message;
 };
 

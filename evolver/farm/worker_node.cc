@@ -25,14 +25,14 @@ WorkerNode::~WorkerNode() = default;
 
 void WorkerNode::OnRequest(const eval_request_t& msg) {
   if (msg.worker != id_) return;  // addressed to another worker
-  EvalOutcome answer;
+  FarmResult answer;
   answer.run = msg.run;
   answer.job = msg.job;
   answer.attempt = msg.attempt;
   answer.worker = id_;
   if (msg.protocol_version != kFarmProtocolVersion) {
     ++counters_.refused;
-    answer.status = EvalOutcome::Status::kRefused;
+    answer.status = FarmResult::Status::kRefused;
     answer.message = "worker " + id_ + " speaks evaluation protocol version " +
                      std::to_string(kFarmProtocolVersion) + ", the request version " +
                      std::to_string(msg.protocol_version);
@@ -43,17 +43,17 @@ void WorkerNode::OnRequest(const eval_request_t& msg) {
   }
   if (!serve_run_.empty() && !SameRun(serve_run_, msg.run)) {
     ++counters_.refused;
-    answer.status = EvalOutcome::Status::kRefused;
+    answer.status = FarmResult::Status::kRefused;
     answer.message = "worker " + id_ + " serves run " + serve_run_ + " only";
     bus::PublishTyped(*bus_, bus::kEvalResultChannel, ResultMessage(answer));
     return;
   }
   if (!seen_.insert({msg.run, msg.job, msg.attempt}).second) return;  // a repeat
-  EvalJob job;
+  FarmJob job;
   const std::string error = JobFromMessage(msg, &job);
   if (!error.empty()) {
     ++counters_.bad_requests;
-    answer.status = EvalOutcome::Status::kError;
+    answer.status = FarmResult::Status::kError;
     answer.message = "bad request: " + error;
     bus::PublishTyped(*bus_, bus::kEvalResultChannel, ResultMessage(answer));
     return;
@@ -86,16 +86,16 @@ void WorkerNode::PublishStatus() {
 void WorkerNode::Poll(std::chrono::microseconds wait) {
   bus_->Handle(queue_.empty() ? wait : std::chrono::microseconds(0));
   if (!queue_.empty()) {
-    EvalJob job = std::move(queue_.front());
+    FarmJob job = std::move(queue_.front());
     queue_.pop_front();
     current_job_ = job.job;
     current_run_ = job.run;
     const auto start = std::chrono::steady_clock::now();
-    EvalOutcome outcome;
+    FarmResult outcome;
     try {
       outcome = evaluate_(job);
     } catch (const std::exception& e) {
-      outcome.status = EvalOutcome::Status::kError;
+      outcome.status = FarmResult::Status::kError;
       outcome.message = e.what();
     }
     outcome.protocol_version = kFarmProtocolVersion;

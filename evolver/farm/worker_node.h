@@ -29,8 +29,8 @@ struct WorkerCounters {
 
 class WorkerNode {
  public:
-  // Evaluates one job; must fill status, fitness, cost, late_messages and message.
-  using EvaluateFn = std::function<EvalOutcome(const EvalJob&)>;
+  // Evaluates one job; must fill status, fitness, cost, states_missed and message.
+  using EvaluateFn = std::function<FarmResult(const FarmJob&)>;
 
   WorkerNode(bus::Bus* bus, std::string id, std::string host, EvaluateFn evaluate,
              std::chrono::milliseconds status_period = std::chrono::milliseconds(1000));
@@ -59,7 +59,7 @@ class WorkerNode {
   EvaluateFn evaluate_;
   std::chrono::milliseconds status_period_;
   std::chrono::steady_clock::time_point last_status_{};
-  std::deque<EvalJob> queue_;
+  std::deque<FarmJob> queue_;
   std::int64_t current_job_ = -1;
   std::string current_run_;
   std::string serve_run_;  // "" = any run

@@ -111,6 +111,24 @@ GenerationStats Summarise(const std::vector<double>& fitness) {
   return s;
 }
 
+std::vector<Evaluation> StepGeneration(const modules::Shape& shape, const GaParams& params,
+                                       std::uint64_t run_seed, int g,
+                                       const std::vector<Genome>& parents,
+                                       const std::vector<double>& fitness,
+                                       FitnessEvaluator& evaluator, std::vector<Genome>* population,
+                                       std::vector<EvaluationJob>* jobs) {
+  *population = g == 0 ? InitialPopulation(shape, params, run_seed)
+                       : Breed(parents, fitness, params, run_seed, g);
+  jobs->clear();
+  for (int i = 0; i < params.population; ++i)
+    jobs->push_back(
+        {g, i, &(*population)[static_cast<std::size_t>(i)], EvaluationSeed(run_seed, g, i)});
+  std::vector<Evaluation> results = evaluator.Evaluate(*jobs);
+  if (results.size() != jobs->size())
+    throw std::runtime_error("the evaluator returned the wrong number of results");
+  return results;
+}
+
 std::vector<GenerationStats> RunGa(const modules::Shape& shape, const GaParams& params,
                                    std::uint64_t run_seed, FitnessEvaluator& evaluator,
                                    std::vector<Genome>* final_population,
@@ -118,17 +136,13 @@ std::vector<GenerationStats> RunGa(const modules::Shape& shape, const GaParams& 
   const std::string error = CheckGaParams(params);
   if (!error.empty()) throw std::invalid_argument(error);
   std::vector<GenerationStats> stats;
-  std::vector<Genome> population = InitialPopulation(shape, params, run_seed);
+  std::vector<Genome> population, parents;
   std::vector<double> fitness;
+  std::vector<EvaluationJob> jobs;
   for (int g = 0; g < params.generations; ++g) {
-    if (g > 0) population = Breed(population, fitness, params, run_seed, g);
-    std::vector<EvaluationJob> jobs;
-    for (int i = 0; i < params.population; ++i)
-      jobs.push_back(
-          {g, i, &population[static_cast<std::size_t>(i)], EvaluationSeed(run_seed, g, i)});
-    const std::vector<Evaluation> results = evaluator.Evaluate(jobs);
-    if (results.size() != jobs.size())
-      throw std::runtime_error("the evaluator returned the wrong number of results");
+    parents.swap(population);
+    const std::vector<Evaluation> results =
+        StepGeneration(shape, params, run_seed, g, parents, fitness, evaluator, &population, &jobs);
     fitness.clear();
     for (const auto& r : results) fitness.push_back(r.fitness);
     stats.push_back(Summarise(fitness));

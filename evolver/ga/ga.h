@@ -83,6 +83,19 @@ struct GenerationStats {
 };
 GenerationStats Summarise(const std::vector<double>& fitness);
 
+// One generation of the GA, the step both RunGa and the stored evolution loop take: the
+// population of generation `g` (the initial one, or bred from `parents` and their `fitness`),
+// evaluated. `population` receives the genomes, `jobs` the evaluation jobs (pointing into
+// `population`), the return value their evaluations. Throws when the evaluator returns the
+// wrong number of results.
+std::vector<Evaluation> StepGeneration(const modules::Shape& shape, const GaParams& params,
+                                       std::uint64_t run_seed, int g,
+                                       const std::vector<modules::Genome>& parents,
+                                       const std::vector<double>& fitness,
+                                       FitnessEvaluator& evaluator,
+                                       std::vector<modules::Genome>* population,
+                                       std::vector<EvaluationJob>* jobs);
+
 // A whole run in memory (tests and analytic benchmarks): evaluates, breeds, repeats. Returns
 // the statistics of every generation; `final_population` gets the last generation's genomes.
 std::vector<GenerationStats> RunGa(const modules::Shape& shape, const GaParams& params,

@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
   options.hormone_timeout = std::chrono::milliseconds(timeout_ms);
   try {
-    auto bus = ahhs::bus::MakeBus(url);
+    auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
     ahhs::modules::ModuleNode node(bus.get(), options);
     std::signal(SIGINT, OnSignal);
     std::signal(SIGTERM, OnSignal);

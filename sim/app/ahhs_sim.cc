@@ -26,7 +26,7 @@ void OnSignal(int) { g_stop = true; }
 
 int ServeBus(const std::string& url, const as::SimNodeOptions& options, int episodes,
              bool verbose) {
-  auto bus = ahhs::bus::MakeBus(url);
+  auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
   as::SimNode node(bus.get(), options);
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);

@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
       {variant == "ahhs1" ? modules::Variant::kAhhs1 : modules::Variant::kAhhs2, 5,
        variant == "ahhs1" ? 40 : 15, probe->num_sensors(), probe->num_actuators()},
       rng);
-  auto bus_ptr = bus::MakeBus(url);  // honours AHHS_FAULT_DROP like every process
+  auto bus_ptr = bus::OpenBusWithFaultInjection(url);  // honours AHHS_FAULT_DROP like every process
   bus::Bus& bus = *bus_ptr;
   arena::EpisodeSpec spec;
   spec.config = testing::ConfigOf(e);

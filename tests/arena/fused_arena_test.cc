@@ -5,7 +5,7 @@
 #include <ahhs/module_status_t.hpp>
 #include <catch2/catch.hpp>
 
-#include "bus/make_bus.h"
+#include "bus/open_bus.h"
 #include "modules/core/organism.h"
 #include "modules/core/variation.h"
 #include "modules/node/genome_codec.h"

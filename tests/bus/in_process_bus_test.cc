@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "bus/make_bus.h"
+#include "bus/open_bus.h"
 
 using namespace std::chrono_literals;
 using ahhs::bus::InProcessBus;

@@ -7,7 +7,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "bus/make_bus.h"
+#include "bus/open_bus.h"
 #include "bus/typed.h"
 #include "tests/fixtures/messages.h"
 

@@ -58,16 +58,16 @@ grep -q "with the evaluation seed it stores" $tmp/noseed.out && grep -q "reprodu
 [[ "$(tail -1 $tmp/noseed.out)" == "fitness: $best" ]] || fail "replay --genome without --seed: $(tail -1 $tmp/noseed.out)"
 for v in "2 direct" "2 fused" "1 processes"; do
   set -- $v
-  $E $pend --out $tmp/p-$2-$1 --workers $1 --arena $2 >$tmp/out 2>&1 || { cat $tmp/out; fail "pendulum $v"; }
+  $E $pend --out $tmp/p-$2-$1 --workers $1 --arena-kind $2 >$tmp/out 2>&1 || { cat $tmp/out; fail "pendulum $v"; }
   same_run $tmp/p-direct-1 $tmp/p-$2-$1 "pendulum, $1 workers, $2 arena"
 done
 $E $gait --out $tmp/g-direct --workers 2 >$tmp/out 2>&1 || { cat $tmp/out; fail "gait run"; }
 for a in fused processes; do
-  $E $gait --out $tmp/g-$a --workers 1 --arena $a >$tmp/out 2>&1 || { cat $tmp/out; fail "gait $a"; }
+  $E $gait --out $tmp/g-$a --workers 1 --arena-kind $a >$tmp/out 2>&1 || { cat $tmp/out; fail "gait $a"; }
   same_run $tmp/g-direct $tmp/g-$a "gait, $a arena"
 done
 $E $gait --joints fixed --variant ahhs1 --out $tmp/gf-direct --workers 2 >/dev/null 2>&1 || fail "gait fixed"
-$E $gait --joints fixed --variant ahhs1 --out $tmp/gf-fused --workers 1 --arena fused >/dev/null 2>&1 || fail "gait fixed fused"
+$E $gait --joints fixed --variant ahhs1 --out $tmp/gf-fused --workers 1 --arena-kind fused >/dev/null 2>&1 || fail "gait fixed fused"
 same_run $tmp/gf-direct $tmp/gf-fused "gait fixed ahhs1, fused arena"
 
 echo "== 2. kill -9 and resume; Ctrl-C"

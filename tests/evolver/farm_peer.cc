@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
       bus, bus::kEvalResultChannel, [&](const std::string&, const eval_result_t& r) {
         if (r.run == "foreign-run") answer = r;
       });
-  evolver::EvalJob job;
+  evolver::FarmJob job;
   job.protocol_version = 99;
   job.run = "foreign-run";
   job.job = 1;

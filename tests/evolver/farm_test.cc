@@ -24,8 +24,8 @@ double FakeFitness(const modules::Genome& g, std::uint64_t seed) {
          static_cast<double>(seed % 1009) * 1e-9;
 }
 
-EvalOutcome Good(const EvalJob& job) {
-  EvalOutcome o;
+FarmResult Good(const FarmJob& job) {
+  FarmResult o;
   o.fitness = FakeFitness(job.genome, job.seed);
   o.cost = 1;
   return o;
@@ -97,8 +97,8 @@ TEST_CASE("one or three workers give the same results as evaluating in place") {
 
 TEST_CASE("a worker that returns NaN gets its jobs re-issued elsewhere, and it is reported") {
   bus::LcmBus bus("memq://");
-  auto nan_fitness = [](const EvalJob& job) {
-    EvalOutcome o = Good(job);
+  auto nan_fitness = [](const FarmJob& job) {
+    FarmResult o = Good(job);
     o.fitness = std::numeric_limits<double>::quiet_NaN();
     return o;
   };
@@ -166,7 +166,7 @@ TEST_CASE("foreign protocol versions, garbage and other runs' results are ignore
            {bus::kEvalRequestChannel, bus::kEvalResultChannel, bus::kWorkerStatusChannel})
         bus.Publish(ch, junk, sizeof junk);
       // A result of another run for a job id of ours.
-      EvalOutcome stray;
+      FarmResult stray;
       stray.run = "other/s1";
       stray.job = 200;
       stray.fitness = -5;
@@ -196,7 +196,7 @@ TEST_CASE("a worker refuses a request of another protocol version and says why")
       bus, bus::kEvalResultChannel,
       [&](const std::string&, const eval_result_t& r) { results.push_back(r); });
   Batch batch(1);
-  EvalJob job;
+  FarmJob job;
   job.protocol_version = 2;
   job.run = "r";
   job.job = 5;

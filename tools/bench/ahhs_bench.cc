@@ -140,7 +140,7 @@ std::pair<double, double> Timed(F&& f) {
 }
 
 // One gait episode six ways. The multi-process arena is timed as evolution uses it (processes
-// already running, as in `ahhs-worker --arena processes`); starting them and a whole
+// already running, as in `ahhs-worker --arena-kind processes`); starting them and a whole
 // `ahhs-launch` run are printed apart. All are timed in rounds, one after the other, and
 // the ratios are taken within a round: this machine's speed drifts by tens of per cent over
 // seconds, which would otherwise show up as a ratio.

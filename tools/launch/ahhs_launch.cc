@@ -12,7 +12,7 @@
 
 #include "bus/cli.h"
 #include "bus/lcm_bus.h"
-#include "bus/make_bus.h"
+#include "bus/open_bus.h"
 #include "evolver/arena/episode.h"
 #include "evolver/arena/fused_arena.h"
 #include "evolver/arena/process_arena.h"

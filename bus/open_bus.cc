@@ -1,4 +1,4 @@
-#include "bus/make_bus.h"
+#include "bus/open_bus.h"
 
 #include "bus/in_process_bus.h"
 #include "bus/lcm_bus.h"

@@ -1,5 +1,6 @@
 // Opens the bus a URL names, so that a caller can offer every transport with one option.
-// (Executables use MakeBus() in bus/fault_bus.h, which adds fault injection on request.)
+// (Executables use OpenBusWithFaultInjection() in bus/fault_bus.h, which adds fault injection on
+// request.)
 #pragma once
 
 #include <memory>

@@ -29,6 +29,10 @@ topology_t TopologyMessage(const Scenario& scenario, std::int64_t episode);
 // of that kind and drops the others.
 void KeepMovingBodies(std::vector<BodyState>* bodies);
 void KeepStaticBodies(std::vector<BodyState>* bodies);
+// SIM/SCENE goes out at the start of tick 0 (with RESET) and of every 20th tick after it (once
+// per gait second, for late joiners); its tick and sim_time are the tick's start.
+inline constexpr std::int64_t kSceneEveryTicks = 20;
+inline bool SceneDue(std::int64_t tick) { return tick % kSceneEveryTicks == 0; }
 
 // The one wire form of a ScenarioConfig: the fields (scenario, num_modules, joints, duration)
 // that sim_control_t (RESET) and eval_request_t both carry.

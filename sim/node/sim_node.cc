@@ -267,7 +267,7 @@ void SimNode::PublishTickStart() {
       phase_ == Phase::kPaused ? sim_clock_t::PAUSED : sim_clock_t::RUNNING;
   if (realtime_ || run_state != last_run_state_ || scenario_->tick() % 20 == 0)
     PublishClock(run_state);
-  if (scenario_->tick() > 0 && scenario_->tick() % 20 == 0) PublishScene();  // for late joiners
+  if (scenario_->tick() > 0 && SceneDue(scenario_->tick())) PublishScene();  // RESET sent tick 0's
   if (realtime_ && scenario_->tick() % 20 == 0) {  // lets a late module learn the docking
     auto t = TopologyMessage(*scenario_, episode_);
     t.utime = bus::NowUtime();

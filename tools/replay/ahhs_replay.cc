@@ -8,29 +8,23 @@
 // paper's mutation neighbourhood) into --mutants-csv FILE. The replay uses the workers' direct
 // arena, so a stored fitness is reproduced to the bit; the output says so, or by how much not.
 #include <CLI/CLI.hpp>
-#include <ahhs/fitness_t.hpp>
-#include <ahhs/hinge_command_t.hpp>
-#include <ahhs/module_trace_t.hpp>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <lcm/lcm-cpp.hpp>
 #include <optional>
 
-#include "bus/channels.h"
 #include "bus/cli.h"
-#include "bus/codec.h"
 #include "evolver/arena/direct_arena.h"
 #include "evolver/arena/episode.h"
+#include "evolver/arena/episode_recorder.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/store/run_store.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/random.h"
 #include "modules/core/variation.h"
 #include "sim/core/behaviour.h"
-#include "sim/node/sim_codec.h"
 
 namespace fs = std::filesystem;
 namespace al = ahhs::arena;
@@ -38,42 +32,6 @@ namespace am = ahhs::modules;
 namespace ev = ahhs::evolver;
 
 namespace {
-
-// An LCM log written to a temporary name and moved into place when complete.
-class LogWriter {
- public:
-  explicit LogWriter(const std::string& path) : path_(path), tmp_(path + ".tmp") {
-    log_ = std::make_unique<lcm::LogFile>(tmp_, "w");
-    if (!log_->good()) throw std::runtime_error("cannot write " + path);
-  }
-  template <class Msg>
-  void Write(const std::string& channel, std::int64_t utime, const Msg& msg) {
-    auto bytes = ahhs::bus::Encode(msg);
-    lcm::LogEvent e;
-    e.eventnum = events_++;
-    e.timestamp = utime;
-    e.channel = channel;
-    e.datalen = static_cast<std::int32_t>(bytes.size());
-    e.data = bytes.data();
-    if (log_->writeEvent(&e) != 0) throw std::runtime_error("cannot write " + path_);
-  }
-  void Commit() {
-    log_.reset();
-    fs::rename(tmp_, path_);
-  }
-  ~LogWriter() {
-    if (log_) {
-      log_.reset();
-      std::error_code ignored;
-      fs::remove(tmp_, ignored);
-    }
-  }
-
- private:
-  std::string path_, tmp_;
-  std::unique_ptr<lcm::LogFile> log_;
-  std::int64_t events_ = 0;
-};
 
 // A text file written to a temporary name and moved into place when complete.
 class TextWriter {
@@ -221,143 +179,20 @@ int main(int argc, char** argv) {
   spec.episode = 1;
 
   try {
-    const ahhs::bus::ArenaChannels ch(spec.arena);
-    std::unique_ptr<LogWriter> log;
-    std::unique_ptr<TextWriter> csv;
-    if (!log_file.empty()) log = std::make_unique<LogWriter>(log_file);
-    if (!csv_file.empty()) {
-      csv = std::make_unique<TextWriter>(csv_file);
-      auto& o = csv->out();
-      o << "tick,time,module,hinge_angle";
-      for (int j = 0; j < spec.genome.num_sensors; ++j) o << ",s" << j;
-      for (int h = 0; h < spec.genome.num_hormones(); ++h) o << ",h" << h;
-      for (int a = 0; a < spec.genome.num_actuators; ++a) o << ",a" << a;
-      o << ",rules_active\n";
-    }
-    std::vector<std::vector<std::uint64_t>> last_activity;
-    std::int64_t last_utime = 0;
-    std::vector<ahhs::sim::BodyState> bodies;
-    std::int64_t ticks_done = 0;
-    double period = 0;
-    const al::DirectObserver observer = [&](const al::DirectTick& t) {
-      const auto& sc = *t.scenario;
-      ticks_done = t.tick + 1;
-      period = sc.control_period();
-      const double time = static_cast<double>(t.tick + 1) * sc.control_period();
-      const auto utime = static_cast<std::int64_t>(std::llround(time * 1e6));
-      last_utime = utime;
-      const int n = t.organism->size();
-      last_activity.resize(static_cast<std::size_t>(n));
-      for (int c = 0; c < n; ++c) {
-        const auto& st = t.organism->state(c);
-        auto& last = last_activity[static_cast<std::size_t>(c)];
-        last.resize(st.rule_activity.size(), 0);
-        ahhs::module_trace_t m;
-        m.utime = utime;
-        m.episode = spec.episode;
-        m.tick = t.tick;
-        m.module = c;
-        const auto& s = (*t.sensors)[static_cast<std::size_t>(c)];
-        m.num_sensors = static_cast<std::int16_t>(s.size());
-        m.sensors = s;
-        for (std::size_t j = 0; j < s.size(); ++j)
-          m.sensor_present.push_back(sc.sensor_owned(c, static_cast<int>(j)));
-        m.num_hormones = static_cast<std::int16_t>(st.hormones.size());
-        m.hormones.assign(st.hormones.data(), st.hormones.data() + st.hormones.size());
-        m.num_actuators = static_cast<std::int16_t>(st.actuators.size());
-        m.actuators.assign(st.actuators.data(), st.actuators.data() + st.actuators.size());
-        m.hinge_angle = sc.HingeAngle(c);
-        m.num_rules = static_cast<std::int16_t>(st.rule_activity.size());
-        int active = 0;
-        for (std::size_t r = 0; r < st.rule_activity.size(); ++r) {
-          const bool fired = st.rule_activity[r] != last[r];
-          m.rule_active.push_back(fired ? 1 : 0);
-          active += fired;
-          last[r] = st.rule_activity[r];
-        }
-        if (log) {
-          ahhs::module_sensors_t sensors = ahhs::sim::SensorsMessage(sc, c, spec.episode);
-          sensors.utime = utime;
-          sensors.tick = t.tick;
-          sensors.values = s;
-          log->Write(ch.Sensors(c), utime, sensors);
-          ahhs::hinge_command_t hinge;
-          hinge.utime = utime;
-          hinge.episode = spec.episode;
-          hinge.tick = t.tick;
-          hinge.module = c;
-          hinge.num_actuators = m.num_actuators;
-          hinge.values = m.actuators;
-          hinge.present.clear();
-          for (int a = 0; a < m.num_actuators; ++a)
-            hinge.present.push_back(sc.actuator_owned(c, a));
-          log->Write(ch.Hinge(c), utime, hinge);
-          log->Write(ch.Trace(c), utime, m);
-        }
-        if (csv) {
-          auto& o = csv->out();
-          o << t.tick << ',' << Exact(time) << ',' << c << ',' << Exact(m.hinge_angle);
-          for (double v : s) o << ',' << Exact(v);
-          for (double v : m.hormones) o << ',' << Exact(v);
-          for (double v : m.actuators) o << ',' << Exact(v);
-          o << ',' << active << '\n';
-        }
-      }
-      if (log) {
-        sc.Bodies(&bodies);
-        if (t.tick % 20 == 0) {  // the static bodies, once per simulated second, as the sim does
-          auto scene = bodies;
-          ahhs::sim::KeepStaticBodies(&scene);
-          log->Write(ch.SimScene(), utime,
-                     ahhs::sim::StateMessage(scene, spec.episode, t.tick + 1, time));
-        }
-        ahhs::sim::KeepMovingBodies(&bodies);
-        log->Write(ch.SimState(), utime,
-                   ahhs::sim::StateMessage(bodies, spec.episode, t.tick + 1, time));
-      }
-    };
-    std::vector<std::vector<std::uint64_t>> final_activity;
+    const bool record = !log_file.empty() || !csv_file.empty() || !rules_csv.empty();
+    al::EpisodeRecorder recorder(spec, log_file, csv_file, rules_csv);
     ahhs::sim::BehaviourSummary behaviour;
     std::vector<double> commands;
-    al::DirectObserver with_rules = [&](const al::DirectTick& t) {
+    const al::EpisodeResult result = al::RunDirectEpisode(spec, [&](const al::DirectTick& t) {
       commands.clear();
       for (int c = 0; c < t.organism->size(); ++c) {
         const auto& a = t.organism->state(c).actuators;
         commands.insert(commands.end(), a.data(), a.data() + a.size());
       }
       behaviour.Observe(*t.scenario, commands);
-      if (log || csv) observer(t);
-      final_activity.clear();
-      for (int c = 0; c < t.organism->size(); ++c)
-        final_activity.push_back(t.organism->state(c).rule_activity);
-    };
-    const al::EpisodeResult result = al::RunDirectEpisode(spec, with_rules);
-    if (log) {
-      ahhs::fitness_t f{};
-      f.episode = spec.episode;
-      f.is_final = true;
-      f.status = result.ok ? ahhs::fitness_t::OK : ahhs::fitness_t::ERROR;
-      // As the live monitor reports it: the last state's tick, every state seen.
-      f.tick = ticks_done;
-      f.sim_time = static_cast<double>(ticks_done) * period;
-      f.states_seen = static_cast<std::int32_t>(ticks_done);
-      f.states_missed = 0;
-      f.fitness = result.ok ? result.fitness : 0;
-      f.cost = result.cost;
-      f.message = result.error;
-      f.utime = last_utime;
-      log->Write(ch.Fitness(), last_utime, f);
-      log->Commit();
-    }
-    if (csv) csv->Commit();
-    if (!rules_csv.empty()) {
-      TextWriter rules(rules_csv);
-      rules.out() << "module,rule,ticks_active\n";
-      for (std::size_t c = 0; c < final_activity.size(); ++c)
-        for (std::size_t r = 0; r < final_activity[c].size(); ++r)
-          rules.out() << c << ',' << r << ',' << final_activity[c][r] << '\n';
-      rules.Commit();
-    }
+      if (record) recorder.Observe(t);
+    });
+    recorder.Commit(result);
     if (mutants > 0) {
       TextWriter out(mutants_csv);
       out.out() << "mutant,fitness,genome_hash\n";

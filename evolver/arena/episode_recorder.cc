@@ -11,6 +11,8 @@
 #include "bus/channels.h"
 #include "bus/codec.h"
 #include "modules/node/trace_codec.h"
+#include "sim/core/gait.h"
+#include "sim/core/pendulum.h"
 #include "sim/node/sim_codec.h"
 
 namespace ahhs::arena {
@@ -93,14 +95,21 @@ std::string Exact(double v) {
 class EpisodeRecorder::Files {
  public:
   std::unique_ptr<LogWriter> log;
-  std::unique_ptr<TextWriter> csv;
+  std::unique_ptr<TextWriter> csv, body;
   std::string rules_csv;
   std::vector<sim::BodyState> bodies;
 };
 
 EpisodeRecorder::EpisodeRecorder(const EpisodeSpec& spec, const std::string& log_file,
-                                 const std::string& csv_file, const std::string& rules_csv)
+                                 const std::string& csv_file, const std::string& rules_csv,
+                                 const std::string& body_csv)
     : spec_(spec), files_(std::make_unique<Files>()) {
+  if (!body_csv.empty()) {
+    files_->body = std::make_unique<TextWriter>(body_csv);
+    files_->body->out() << (spec.config.kind == sim::ScenarioKind::kPendulum
+                                ? "tick,time,cart_x,pole_angle\n"
+                                : "tick,time,centroid_x,centroid_y\n");
+  }
   if (!log_file.empty()) files_->log = std::make_unique<LogWriter>(log_file);
   files_->rules_csv = rules_csv;
   if (!csv_file.empty()) {
@@ -139,6 +148,8 @@ void EpisodeRecorder::Observe(const DirectTick& t) {
     const auto i = static_cast<std::size_t>(c);
     const auto& st = t.organism->state(c);
     final_activity_[i] = st.rule_activity;
+    final_parts_.resize(static_cast<std::size_t>(n));
+    final_parts_[i] = st.part_activity;
     const auto& s = (*t.sensors)[i];
     std::vector<bool> present;
     for (std::size_t j = 0; j < s.size(); ++j)
@@ -174,6 +185,16 @@ void EpisodeRecorder::Observe(const DirectTick& t) {
       o << ',' << active << '\n';
     }
   }
+  if (files_->body) {
+    auto& o = files_->body->out();
+    o << t.tick << ',' << Exact(time);
+    if (const auto* p = dynamic_cast<const sim::PendulumScenario*>(&sc)) {
+      o << ',' << Exact(p->state().x) << ',' << Exact(p->state().phi) << '\n';
+    } else if (const auto* g = dynamic_cast<const sim::GaitScenario*>(&sc)) {
+      const auto c = g->Centroid();
+      o << ',' << Exact(c[0]) << ',' << Exact(c[1]) << '\n';
+    }
+  }
   if (log) {
     sc.Bodies(&files_->bodies);
     sim::KeepMovingBodies(&files_->bodies);
@@ -201,12 +222,20 @@ void EpisodeRecorder::Commit(const EpisodeResult& result) {
     files_->log->Commit();
   }
   if (files_->csv) files_->csv->Commit();
+  if (files_->body) files_->body->Commit();
   if (!files_->rules_csv.empty()) {
     TextWriter rules(files_->rules_csv);
-    rules.out() << "module,rule,ticks_active\n";
+    // Per rule: ticks in which any part triggered, then each part (AHHS1: its type's column).
+    rules.out() << "module,rule,ticks_active,sensor,linear,nonlinear,actuator\n";
     for (std::size_t c = 0; c < final_activity_.size(); ++c)
-      for (std::size_t r = 0; r < final_activity_[c].size(); ++r)
-        rules.out() << c << ',' << r << ',' << final_activity_[c][r] << '\n';
+      for (std::size_t r = 0; r < final_activity_[c].size(); ++r) {
+        rules.out() << c << ',' << r << ',' << final_activity_[c][r];
+        for (std::size_t k = 0; k < static_cast<std::size_t>(modules::kActivityColumns); ++k)
+          rules.out()
+              << ','
+              << final_parts_[c][r * static_cast<std::size_t>(modules::kActivityColumns) + k];
+        rules.out() << '\n';
+      }
     rules.Commit();
   }
 }

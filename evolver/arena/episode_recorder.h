@@ -15,9 +15,10 @@ namespace ahhs::arena {
 
 class EpisodeRecorder {
  public:
-  // Empty paths are not written.
+  // Empty paths are not written. `body_csv`: the organism per tick (pendulum: cart position and
+  // pole angle; gait: the centroid), `tick,time,...`.
   EpisodeRecorder(const EpisodeSpec& spec, const std::string& log_file, const std::string& csv_file,
-                  const std::string& rules_csv);
+                  const std::string& rules_csv, const std::string& body_csv = "");
   ~EpisodeRecorder();
   EpisodeRecorder(const EpisodeRecorder&) = delete;
   EpisodeRecorder& operator=(const EpisodeRecorder&) = delete;
@@ -32,7 +33,7 @@ class EpisodeRecorder {
   const EpisodeSpec spec_;
   std::unique_ptr<Files> files_;
   std::vector<std::vector<std::uint64_t>> last_activity_;  // per module
-  std::vector<std::vector<std::uint64_t>> final_activity_;
+  std::vector<std::vector<std::uint64_t>> final_activity_, final_parts_;
   std::int64_t ticks_done_ = 0;
   double period_ = 0;
   std::int64_t last_utime_ = 0;

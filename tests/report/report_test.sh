@@ -34,12 +34,19 @@ grep -q "600 trace (module, tick) pairs; 0 incomplete" $tmp/count.out || fail "t
 echo "== ahhs-report"
 "$bin/ahhs-report" $tmp/a2-{1,2,3} $tmp/a1-{1,2,3} $tmp/gait -o $tmp/report >$tmp/report.out 2>&1 ||
   { cat $tmp/report.out; fail "ahhs-report"; }
-for f in fitness box_best box_speed hormones hinges sensors rules controller; do
+for f in fitness box_best box_speed hormones trace sensors rules controller; do
   for ext in png svg; do
     [[ -s $tmp/report/$f.$ext ]] || fail "missing or empty: $f.$ext"
   done
 done
 [[ -s $tmp/report/controller.dot && -s $tmp/report/replay.lcm && -s $tmp/report/replay-trace.csv ]] || fail "replay files"
+grep -q "cart_x,pole_angle" $tmp/report/replay-body.csv || fail "the pendulum's body trace"
+[[ ! -e $tmp/report/hinges.png ]] || fail "a hinge panel for the pendulum"
+# A controller graph draws only rule parts that triggered, weighted by how often.
+grep -q 'penwidth=' $tmp/report/controller.dot || fail "controller edges without activity weights"
+"$bin/ahhs-report" $tmp/gait -o $tmp/report-gait >/dev/null 2>&1 || fail "gait report"
+[[ -s $tmp/report-gait/hinges.png && ! -e $tmp/report-gait/trace.png ]] || fail "gait figures: $(ls $tmp/report-gait)"
+grep -q "centroid_x,centroid_y" $tmp/report-gait/replay-body.csv || fail "the gait's body trace"
 grep -q "reproduced exactly" $tmp/report/summary.md || fail "summary lacks the replay check"
 grep -q "| pendulum AHHS2-8 | pendulum AHHS1-12 | 3 | 3 |" $tmp/report/summary.md || fail "summary lacks the Wilcoxon table: $(cat $tmp/report/summary.md)"
 [[ "$(head -c 4 $tmp/report/fitness.png | tail -c 3)" == PNG ]] || fail "fitness.png is not a PNG"

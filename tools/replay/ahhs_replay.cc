@@ -96,6 +96,10 @@ int main(int argc, char** argv) {
       ->check(am::SeedTextError);
   app.add_option("--log", log_file, "write the episode as an LCM log");
   app.add_option("--csv", csv_file, "write the per-tick trace as CSV");
+  std::string body_csv;
+  app.add_option("--body-csv", body_csv,
+                 "write the organism per tick as CSV (pendulum: cart_x, pole_angle in rad; gait: "
+                 "centroid_x, centroid_y in m)");
   app.add_option("--rules-csv", rules_csv, "write how often each rule triggered, per module");
   app.add_option("--mutants", mutants, "evaluate this many single mutants of the genome")
       ->check(CLI::Range(0, 100000));
@@ -118,8 +122,8 @@ int main(int argc, char** argv) {
   try {
     if (run_dir.empty() == genome_file.empty())
       throw std::invalid_argument("give either a run directory or --genome FILE");
-    const std::string exists =
-        ahhs::cli::RefuseExisting({log_file, csv_file, rules_csv, mutants_csv}, overwrite);
+    const std::string exists = ahhs::cli::RefuseExisting(
+        {log_file, csv_file, rules_csv, mutants_csv, body_csv}, overwrite);
     if (!exists.empty()) {
       std::cerr << "ahhs-replay: " << exists << '\n';
       return ahhs::cli::kExitUsage;
@@ -179,8 +183,9 @@ int main(int argc, char** argv) {
   spec.episode = 1;
 
   try {
-    const bool record = !log_file.empty() || !csv_file.empty() || !rules_csv.empty();
-    al::EpisodeRecorder recorder(spec, log_file, csv_file, rules_csv);
+    const bool record =
+        !log_file.empty() || !csv_file.empty() || !rules_csv.empty() || !body_csv.empty();
+    al::EpisodeRecorder recorder(spec, log_file, csv_file, rules_csv, body_csv);
     ahhs::sim::BehaviourSummary behaviour;
     std::vector<double> commands;
     const al::EpisodeResult result = al::RunDirectEpisode(spec, [&](const al::DirectTick& t) {

@@ -24,6 +24,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 from scipy import stats  # noqa: E402
 
 
@@ -108,56 +109,97 @@ def save(fig, out_dir, name, written):
     plt.close(fig)
 
 
-def fitness_figure(groups, out_dir, written):
-    fig, ax = plt.subplots(figsize=(8, 4.5))
+def tasks_of(groups):
+    """Configuration labels grouped by task, in order: tasks never share a fitness axis."""
+    tasks = OrderedDict()
     for label, runs in groups.items():
-        if len(runs) == 1:
-            r = runs[0]
-            line, = ax.plot(r.generation, r.best, label=f"{label}: best")
-            ax.plot(r.generation, r.mean, "--", color=line.get_color(), label=f"{label}: mean")
-        else:
-            n = min(len(r.best) for r in runs)
-            best = np.array([r.best[:n] for r in runs])
-            g = runs[0].generation[:n]
-            q1, med, q3 = np.percentile(best, [25, 50, 75], axis=0)
-            line, = ax.plot(g, med, label=f"{label}: median best (n={len(runs)})")
-            ax.fill_between(g, q1, q3, color=line.get_color(), alpha=0.25)
-    ax.set_xlabel("generation")
-    ax.set_ylabel("fitness")
-    ax.set_title("Fitness per generation" + (" (band: quartiles)" if any(
-        len(r) > 1 for r in groups.values()) else ""))
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+        tasks.setdefault(runs[0].task, []).append(label)
+    return tasks
+
+
+def fitness_figure(groups, out_dir, written):
+    tasks = tasks_of(groups)
+    fig, axes = plt.subplots(len(tasks), 1, figsize=(8, 3.6 * len(tasks) + 0.4), squeeze=False)
+    for ax, (task, labels) in zip(axes[:, 0], tasks.items()):
+        for label in labels:
+            runs = groups[label]
+            if len(runs) == 1:
+                r = runs[0]
+                line, = ax.plot(r.generation, r.best, label=f"{label}: best (n=1)")
+                ax.plot(r.generation, r.mean, "--", color=line.get_color(), label=f"{label}: mean")
+            else:
+                n = min(len(r.best) for r in runs)
+                best = np.array([r.best[:n] for r in runs])
+                g = runs[0].generation[:n]
+                q1, med, q3 = np.percentile(best, [25, 50, 75], axis=0)
+                line, = ax.plot(g, med, label=f"{label}: median best (n={len(runs)})")
+                ax.fill_between(g, q1, q3, color=line.get_color(), alpha=0.25)
+        ax.set_xlabel("generation")
+        ax.set_ylabel(f"fitness ({task})")
+        ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+        ax.set_title(f"{task}: fitness per generation" + (" (band: quartiles)" if any(
+            len(groups[l]) > 1 for l in labels) else ""), fontsize=10)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
     save(fig, out_dir, "fitness", written)
 
 
-def box_figure(groups, values, ylabel, title, name, out_dir, written, task_of):
-    labels = list(groups.keys())
-    data = [values[l] for l in labels]
-    fig, ax = plt.subplots(figsize=(max(4, 2.2 * len(labels)), 4.5))
-    ax.boxplot(data, labels=[f"{l}\nn={len(d)}" for l, d in zip(labels, data)])
-    ax.set_ylabel(ylabel)
-    ax.set_title(title, fontsize=10)
-    ax.grid(alpha=0.3, axis="y")
+def box_figure(groups, values, ylabel, title, name, out_dir, written, integer=False):
+    """One panel per task. A configuration with fewer than 2 runs is drawn as its points, without
+    a box, and takes part in no test; tests compare configurations of one task only."""
+    tasks = tasks_of(groups)
+    width = max(4, 2.2 * max(len(l) for l in tasks.values()))
+    fig, axes = plt.subplots(1, len(tasks), figsize=(width * len(tasks), 4.8), squeeze=False)
     tests = []
-    top = max(max(d) for d in data if len(d)) if any(len(d) for d in data) else 1
-    span = (top - min(min(d) for d in data if len(d))) or 1
-    k = 0
-    for i in range(len(labels)):
-        for j in range(i + 1, len(labels)):
-            # Only configurations of one task are comparable (fitness scales differ by task).
-            if len(data[i]) and len(data[j]) and task_of[labels[i]] == task_of[labels[j]]:
+    for ax, (task, labels) in zip(axes[0, :], tasks.items()):
+        data = [values[l] for l in labels]
+        boxed = [i for i, d in enumerate(data) if len(d) >= 2]
+        if boxed:
+            ax.boxplot([data[i] for i in boxed], positions=[i + 1 for i in boxed], widths=0.5)
+        for i, d in enumerate(data):
+            if len(d) < 2:
+                ax.plot([i + 1] * len(d), d, "o", color="black")
+        ax.set_xticks(range(1, len(labels) + 1))
+        ax.set_xticklabels([f"{l}\nn={len(d)}" for l, d in zip(labels, data)], fontsize=8)
+        ax.set_xlim(0.5, len(labels) + 0.5)
+        ax.set_ylabel(ylabel)
+        ax.set_title(task, fontsize=10)
+        ax.grid(alpha=0.3, axis="y")
+        if integer:
+            ax.yaxis.set_major_locator(MaxNLocator(integer=True))
+        flat = [v for d in data for v in d]
+        top, span = max(flat), (max(flat) - min(flat)) or 1
+        k = 0
+        for i in boxed:
+            for j in boxed:
+                if j <= i:
+                    continue
                 u, p = rank_sum_test(data[i], data[j])
                 tests.append((labels[i], labels[j], len(data[i]), len(data[j]), u, p))
                 y = top + span * (0.08 + 0.1 * k)
                 ax.plot([i + 1, j + 1], [y, y], color="black", lw=0.8)
                 ax.text((i + j + 2) / 2, y, f"p = {p:.3g}", ha="center", va="bottom", fontsize=8)
                 k += 1
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
     save(fig, out_dir, name, written)
     return tests
 
 
-def replay_figures(trace_csv, rules_csv, out_dir, written):
+SENSOR_NAMES = {
+    "gait": ["up", "forward", "down", "back"],
+    "pendulum": ["upper left", "upper right", "lower left", "lower right", "wall left",
+                 "wall right", "speed left", "speed right", "spin ccw", "spin cw"],
+}
+
+
+def sensor_name(task, j):
+    names = SENSOR_NAMES["pendulum" if task == "pendulum" else "gait"]
+    return f"S{j} {names[j]}" if j < len(names) else f"S{j}"
+
+
+def replay_figures(trace_csv, rules_csv, body_csv, task, out_dir, written):
     data = np.genfromtxt(trace_csv, delimiter=",", names=True)
     names = data.dtype.names
     modules = sorted(set(int(m) for m in data["module"]))
@@ -165,6 +207,7 @@ def replay_figures(trace_csv, rules_csv, out_dir, written):
     sensors = [n for n in names if n[0] == "s" and n[1:].isdigit()]
     actuators = [n for n in names if n[0] == "a" and n[1:].isdigit()]
     used = [h for h in hormones if np.max(data[h]) > 1e-3]
+    pendulum = task == "pendulum"
     # Hormone concentrations through the organism: one panel per hormone, a line per module.
     shown = used or hormones[:1]
     fig, axes = plt.subplots(len(shown), 1, figsize=(8, 1.9 * len(shown) + 0.6), sharex=True,
@@ -180,43 +223,87 @@ def replay_figures(trace_csv, rules_csv, out_dir, written):
     axes[-1, 0].set_xlabel("simulated time (s)")
     fig.suptitle(f"Hormone concentrations in every module ({len(used)} of {len(hormones)} "
                  f"hormones ever above 0.001)", fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, 0.98))
     save(fig, out_dir, "hormones", written)
-    # Hinge angles and actuator values.
-    fig, axes = plt.subplots(2, 1, figsize=(8, 5), sharex=True)
-    for m in modules:
-        rows = data["module"] == m
-        axes[0].plot(data["time"][rows], np.degrees(data["hinge_angle"][rows]), lw=0.9,
-                     label=f"module {m}")
-        for a in actuators:
-            axes[1].plot(data["time"][rows], data[a][rows], lw=0.9, label=f"module {m} {a}")
-    axes[0].set_ylabel("hinge angle (deg)")
-    axes[1].set_ylabel("actuator value")
-    axes[1].set_xlabel("simulated time (s)")
-    axes[0].legend(fontsize=7, ncol=len(modules))
+    # The body and the commands: the pendulum's angle and cart, or the gait's hinges; then every
+    # module's own actuator values.
+    body = np.genfromtxt(body_csv, delimiter=",", names=True)
+    fig, axes = plt.subplots(3 if pendulum else 2, 1, figsize=(8, 7.5 if pendulum else 5),
+                             sharex=True)
+    if pendulum:
+        angle = np.degrees(np.angle(np.exp(1j * body["pole_angle"])))
+        # Break the line where the angle wraps at +-180 (a pass through the bottom), so that no
+        # vertical stroke suggests a swing through the top.
+        time = body["time"].astype(float)
+        jumps = np.nonzero(np.abs(np.diff(angle)) > 180)[0] + 1
+        angle = np.insert(angle, jumps, np.nan)
+        time = np.insert(time, jumps, np.nan)
+        axes[0].plot(time, angle, lw=0.8, color="tab:purple")
+        axes[0].set_ylabel("pole angle (deg)\n0 = upright")
+        axes[0].set_ylim(-185, 185)
+        axes[0].set_yticks([-180, -90, 0, 90, 180])
+        axes[1].plot(body["time"], body["cart_x"], lw=0.9, color="tab:brown")
+        axes[1].set_ylabel("cart position (m)")
+        command_ax = axes[2]
+        for m in modules:
+            rows = data["module"] == m
+            a = actuators[m] if m < len(actuators) else actuators[0]
+            command_ax.plot(data["time"][rows], data[a][rows], lw=0.9,
+                            label=f"module {m} ({'left' if m == 0 else 'right'}): {a.upper()}")
+        title = "Pendulum: angle, cart and the two compartments' commands"
+        name = "trace"
+    else:
+        for m in modules:
+            rows = data["module"] == m
+            axes[0].plot(data["time"][rows], np.degrees(data["hinge_angle"][rows]), lw=0.9,
+                         label=f"module {m}")
+        axes[0].set_ylabel("hinge angle (deg)")
+        axes[0].legend(fontsize=7, ncol=len(modules))
+        command_ax = axes[1]
+        for m in modules:
+            rows = data["module"] == m
+            command_ax.plot(data["time"][rows], data[actuators[0]][rows], lw=0.9,
+                            label=f"module {m}")
+        title = (f"Gait: hinge angles and commands (centroid moved "
+                 f"{np.hypot(body['centroid_x'][-1] - body['centroid_x'][0], body['centroid_y'][-1] - body['centroid_y'][0]):.2f} m)")
+        name = "hinges"
+    command_ax.set_ylabel("actuator value")
+    command_ax.set_ylim(-1.05, 1.05)
+    command_ax.legend(fontsize=7, ncol=len(modules))
+    command_ax.set_xlabel("simulated time (s)")
     for ax in axes:
         ax.grid(alpha=0.3)
-    save(fig, out_dir, "hinges", written)
-    # Sensors: one panel per module.
-    fig, axes = plt.subplots(len(modules), 1, figsize=(8, 1.6 * len(modules) + 0.6),
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    save(fig, out_dir, name, written)
+    # Sensors: one panel per module, one colour per sensor in every panel, named.
+    colours = plt.get_cmap("tab10")
+    fig, axes = plt.subplots(len(modules), 1, figsize=(8, 1.6 * len(modules) + 0.8),
                              sharex=True, squeeze=False)
     for ax, m in zip(axes[:, 0], modules):
         rows = data["module"] == m
-        for s in sensors:
+        for j, s in enumerate(sensors):
             if np.max(data[s][rows]) > 0:
-                ax.plot(data["time"][rows], data[s][rows], lw=0.7, label=s.upper())
+                ax.plot(data["time"][rows], data[s][rows], lw=0.7, color=colours(j % 10),
+                        label=sensor_name(task, j))
         ax.set_ylabel(f"module {m}")
         ax.set_ylim(-0.02, 1.02)
-        ax.legend(fontsize=6, ncol=5, loc="upper right")
+        ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     axes[-1, 0].set_xlabel("simulated time (s)")
-    fig.suptitle("Sensor values", fontsize=10)
+    fig.suptitle("Sensor values (absent slots not drawn)", fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, 0.97))
     save(fig, out_dir, "sensors", written)
     # Rule activity: share of ticks in which each rule triggered, per module.
-    rules = np.genfromtxt(rules_csv, delimiter=",", names=True, dtype=None)
+    rules = np.atleast_1d(np.genfromtxt(rules_csv, delimiter=",", names=True, dtype=None))
     ticks = len(data) / len(modules)
     n_rules = int(np.max(rules["rule"])) + 1 if len(rules) else 0
     share = np.zeros((len(modules), n_rules))
-    for row in np.atleast_1d(rules):
-        share[int(row["module"]), int(row["rule"])] = row["ticks_active"] / ticks
+    parts = np.zeros((n_rules, 4))  # per part: the largest share over the modules
+    for row in rules:
+        r = int(row["rule"])
+        share[int(row["module"]), r] = row["ticks_active"] / ticks
+        for k, part in enumerate(("sensor", "linear", "nonlinear", "actuator")):
+            parts[r, k] = max(parts[r, k], row[part] / ticks)
     fig, ax = plt.subplots(figsize=(max(6, 0.25 * n_rules + 2), 4))
     width = 0.8 / max(1, len(modules))
     for k, m in enumerate(modules):
@@ -224,6 +311,7 @@ def replay_figures(trace_csv, rules_csv, out_dir, written):
     ax.axhline(0.01, color="gray", lw=0.8, ls="--")
     ax.set_xlabel("rule")
     ax.set_ylabel("share of ticks triggered")
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_title("Rule activity (dashed: 1 %, below it a rule triggers 'seldom')", fontsize=10)
     ax.legend(fontsize=7, ncol=len(modules))
     save(fig, out_dir, "rules", written)
@@ -234,42 +322,66 @@ def replay_figures(trace_csv, rules_csv, out_dir, written):
         "rules": n_rules,
         "never": int(np.sum(overall == 0)),
         "seldom": int(np.sum((overall > 0) & (overall < 0.01))),
+        "parts": parts,
     }
 
 
-def controller_graph(genome, out_dir, written, name="controller"):
-    """Sensors -> hormones -> actuators, one edge per rule's dominant part."""
+def rule_parts(rules_csv, ticks):
+    """Per rule and part (sensor, linear, nonlinear, actuator): the largest share of ticks it
+    triggered in any module."""
+    rules = np.atleast_1d(np.genfromtxt(rules_csv, delimiter=",", names=True, dtype=None))
+    n_rules = int(np.max(rules["rule"])) + 1 if len(rules) else 0
+    parts = np.zeros((n_rules, 4))
+    for row in rules:
+        for k, part in enumerate(("sensor", "linear", "nonlinear", "actuator")):
+            parts[int(row["rule"]), k] = max(parts[int(row["rule"]), k], row[part] / ticks)
+    return parts
+
+
+def controller_graph(genome, parts, out_dir, written, name="controller", task="gait"):
+    """Sensors -> hormones -> actuators: one edge per rule part that triggered in the replay,
+    its width by the share of ticks it triggered (the most active module); parts that never
+    triggered are not drawn."""
     lines = ["digraph controller {", "  rankdir=LR; node [fontsize=10]; edge [fontsize=8];"]
-    ns, nh, na = genome["sensors"], len(genome["hormones"]), genome["actuators"]
-    lines.append("  { rank=same; " + " ".join(f"S{j} [shape=box, color=blue];" for j in range(ns)) + " }")
-    lines.append("  " + " ".join(f"H{h} [shape=ellipse, color=darkgreen];" for h in range(nh)))
-    lines.append("  { rank=same; " + " ".join(f"A{a} [shape=box, color=red];" for a in range(na)) + " }")
+    edge_lines, used = [], set()
     edges = 0
+    kinds = ("sensor", "linear", "nonlinear", "actuator")
     for r, rule in enumerate(genome["rules"]):
-        if genome["variant"] == "ahhs2":
-            w = rule["weights"]
-            part = max(("sensor", "linear", "nonlinear", "actuator", "idle"), key=lambda k: w[k])
-            if part == "idle":
+        for k, part in enumerate(kinds):
+            active = parts[r, k] if r < len(parts) else 0
+            if active <= 0:
                 continue
-            lo, hi = rule["zeta"] - rule["eta"], rule["zeta"] + rule["eta"]
-            window = f"({lo:.2f}, {hi:.2f})"
-            s, i = int(math.floor(rule["sensor"])), int(math.floor(rule["input"]))
-            o, a = int(math.floor(rule["output"])), int(math.floor(rule["actuator"]))
-            src = {"sensor": f"S{s}", "linear": f"H{i}", "nonlinear": f"H{i}", "actuator": f"H{i}"}[part]
-            dst = f"A{a}" if part == "actuator" else f"H{o}"
+            if genome["variant"] == "ahhs2":
+                s, i = int(math.floor(rule["sensor"])), int(math.floor(rule["input"]))
+                o, a = int(math.floor(rule["output"])), int(math.floor(rule["actuator"]))
+                src = f"S{s}" if part == "sensor" else f"H{i}"
+                dst = f"A{a}" if part == "actuator" else f"H{o}"
+                positive = rule["lambda"] >= 0
+            else:
+                if rule["type"] != part:
+                    continue
+                src = f"S{rule['input']}" if part == "sensor" else f"H{rule['input']}"
+                dst = f"A{rule['output']}" if part == "actuator" else f"H{rule['output']}"
+                positive = rule["lambda"] >= 0
             tag = {"sensor": "S", "linear": "L", "nonlinear": "N", "actuator": "A"}[part]
-            label = f"r{r} {tag} {window} w={w[part]:.2f}"
-        else:
-            kind = rule["type"]
-            if kind == "idle":
-                continue
-            sign = ">" if rule["direction"] == "above" else "<"
-            src = f"S{rule['input']}" if kind == "sensor" else f"H{rule['input']}"
-            dst = f"A{rule['output']}" if kind == "actuator" else f"H{rule['output']}"
-            label = f"r{r} {kind} {sign} {rule['tau']:.2f}"
-        color = "black" if rule["lambda"] >= 0 else "firebrick"
-        lines.append(f'  {src} -> {dst} [label="{label}", color={color}];')
-        edges += 1
+            colour = "black" if positive else "firebrick"
+            pct = f"{100 * active:.0f}%" if active >= 0.01 else f"{100 * active:.1g}%"
+            edge_lines.append(f'  {src} -> {dst} [label="r{r} {tag} {pct}", '
+                              f'color={colour}, penwidth={0.6 + 4 * active:.2f}];')
+            used.update((src, dst))
+            edges += 1
+    # Only the sensors, hormones and actuators that an active rule part touches.
+    pick = lambda p: sorted((n for n in used if n[0] == p), key=lambda n: int(n[1:]))
+    if pick("S"):
+        lines.append("  { rank=same; " + " ".join(
+            f'{n} [shape=box, color=blue, label="{sensor_name(task, int(n[1:]))}"];'
+            for n in pick("S")) + " }")
+    if pick("H"):
+        lines.append("  " + " ".join(f"{n} [shape=ellipse, color=darkgreen];" for n in pick("H")))
+    if pick("A"):
+        lines.append("  { rank=same; " + " ".join(f"{n} [shape=box, color=red];"
+                                                    for n in pick("A")) + " }")
+    lines += edge_lines
     lines.append("}")
     dot_path = os.path.join(out_dir, f"{name}.dot")
     with open(dot_path, "w") as f:
@@ -331,7 +443,6 @@ def report_runs(args):
     for r in runs:
         groups.setdefault(r.label, []).append(r)
     fitness_figure(groups, args.out, written)
-    task_of = {l: rs[0].task for l, rs in groups.items()}
     # 75 % of the maximum over all runs of the same task.
     overall = {}
     for r in runs:
@@ -348,11 +459,11 @@ def report_runs(args):
                 g, censored = int(r.generation[-1]) + 1, censored + 1
             speed[l].append(g)
     best_tests = box_figure(groups, best, "best fitness of the run",
-                            "Best fitness per configuration (two-sided Wilcoxon rank-sum)",
-                            "box_best", args.out, written, task_of)
+                            "Best fitness per configuration (two-sided Wilcoxon rank-sum, n >= 2)",
+                            "box_best", args.out, written)
     speed_tests = box_figure(groups, speed, "generation",
                              "Generation reaching 75 % of the task's maximum fitness",
-                             "box_speed", args.out, written, task_of)
+                             "box_speed", args.out, written, integer=True)
     md = ["# AHHS run report", ""]
     md += ["| configuration | runs | best fitness: median | min | max | generation to 75 %: median |",
            "|---|---|---|---|---|---|"]
@@ -379,12 +490,14 @@ def report_runs(args):
         trace = os.path.join(args.out, "replay-trace.csv")
         rules = os.path.join(args.out, "replay-rules.csv")
         log = os.path.join(args.out, "replay.lcm")
-        out = run_replay(bin_dir, [first.path, "--csv", trace, "--rules-csv", rules, "--log", log])
-        written += [trace, rules, log]
-        info = replay_figures(trace, rules, args.out, written)
+        body = os.path.join(args.out, "replay-body.csv")
+        out = run_replay(bin_dir, [first.path, "--csv", trace, "--rules-csv", rules, "--log", log,
+                                   "--body-csv", body])
+        written += [trace, rules, log, body]
+        info = replay_figures(trace, rules, body, first.task, args.out, written)
         with open(os.path.join(first.path, "best.json")) as f:
             genome = json.load(f)
-        edges = controller_graph(genome, args.out, written)
+        edges = controller_graph(genome, info["parts"], args.out, written, task=first.task)
         check = [l for l in out.splitlines() if l.startswith("stored fitness")]
         md += ["", f"## The best controller of `{first.path}`", "",
                "Replayed with `ahhs-replay` (log: `replay.lcm`): " + (check[0] if check else out.strip()),
@@ -392,7 +505,8 @@ def report_runs(args):
                f"- hormones ever above 0.001: {info['hormones_used']} of {info['hormones']}",
                f"- rules that never trigger: {info['never']} of {info['rules']}; seldom (< 1 % of "
                f"ticks): {info['seldom']}",
-               f"- controller graph: {edges} edges (one per non-idle rule, by its dominant part)"]
+               f"- controller graph: {edges} edges (one per rule part that triggered in the replay, "
+               "its width by the share of ticks)"]
     md += ["", "## Figures", ""] + [f"- `{os.path.basename(p)}`" for p in written
                                     if p.endswith(".png")]
     summary = os.path.join(args.out, "summary.md")
@@ -416,8 +530,11 @@ def report_neighbourhood(args):
                 "--modules", str(args.modules), "--duration", str(args.duration),
                 "--seed", str(args.seed)]
         genome_path = args.genome
+    rules = os.path.join(args.out, "rules.csv")
+    body = os.path.join(args.out, "body.csv")
     run_replay(bin_dir, argv + ["--mutants", str(args.mutants), "--mutants-csv", csv,
-                                "--mutant-seed", str(args.mutant_seed)])
+                                "--mutant-seed", str(args.mutant_seed), "--rules-csv", rules,
+                                "--body-csv", body])
     data = np.genfromtxt(csv, delimiter=",", names=True, dtype=None, encoding="utf-8")
     original = float(data["fitness"][0])
     mutants = np.array([float(v) for v in data["fitness"][1:]])
@@ -428,11 +545,16 @@ def report_neighbourhood(args):
     ax.axvline(original, color="firebrick", lw=2, label=f"original {original:.3f}")
     ax.set_xlabel("fitness")
     ax.set_ylabel("mutants")
+    ax.yaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_title("Mutation neighbourhood", fontsize=10)
     ax.legend(fontsize=8)
     save(fig, args.out, "neighbourhood", written)
+    written += [rules, body]
+    ticks = max(1, len(np.atleast_1d(np.genfromtxt(body, delimiter=",", names=True))))
+    task = "pendulum" if args.scenario == "pendulum" and not os.path.isdir(args.genome) else (
+        Run(args.genome).task if os.path.isdir(args.genome) else f"gait-{args.joints}")
     with open(genome_path) as f:
-        controller_graph(json.load(f), args.out, written)
+        controller_graph(json.load(f), rule_parts(rules, ticks), args.out, written, task=task)
     keep = np.mean(mutants >= 0.9 * original) if original > 0 else float("nan")
     md = ["# Mutation neighbourhood", "", f"Genome: `{genome_path}`; {len(mutants)} single mutants "
           f"(mutation seed {args.mutant_seed}), each evaluated with the same episode seed.", "",

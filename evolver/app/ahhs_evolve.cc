@@ -121,15 +121,8 @@ class Progress {
   bool drawn_ = false;
 };
 
-// A local worker that dies is started again, this many times per session at most.
-constexpr int kMaxWorkerRestarts = 20;
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"ahhs-evolve: evolves hormone controllers (the paper's GA) on evaluation workers"};
-  app.allow_config_extras(CLI::config_extras_mode::error);
-  app.set_config("--config", "", "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
+// The command line.
+struct Options {
   std::string scenario = "gait", joints = "damped", variant = "ahhs2", out_dir, resume_dir,
               arena = "direct", url = ahhs::bus::kDefaultLcmUrl, mutation_profile = "paper";
   int modules = 5, hormones = 5, rules = 30, population = 20, generations = 200, elitism = 1,
@@ -138,122 +131,182 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   double job_deadline = 300, worker_wait = 60;
   bool overwrite = false, show_config = false;
-  app.add_option("--scenario", scenario, "gait or pendulum")
+};
+
+void AddOptions(CLI::App& app, Options* o) {
+  app.allow_config_extras(CLI::config_extras_mode::error);
+  app.set_config("--config", "", "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
+  app.add_option("--scenario", o->scenario, "gait or pendulum")
       ->check(CLI::IsMember({"gait", "pendulum"}))
       ->capture_default_str();
-  app.add_option("--joints", joints, "gait docking: damped or fixed")
+  app.add_option("--joints", o->joints, "gait docking: damped or fixed")
       ->check(CLI::IsMember({"damped", "fixed"}))
       ->capture_default_str();
-  app.add_option("--modules", modules, "gait: modules in the chain")->capture_default_str();
-  app.add_option("--duration", duration,
+  app.add_option("--modules", o->modules, "gait: modules in the chain")->capture_default_str();
+  app.add_option("--duration", o->duration,
                  "episode length, simulated seconds (0: the task's, 60 s gait / 3000 ticks)")
       ->capture_default_str();
-  app.add_option("--variant", variant, "controller: ahhs1 or ahhs2")
+  app.add_option("--variant", o->variant, "controller: ahhs1 or ahhs2")
       ->check(CLI::IsMember({"ahhs1", "ahhs2"}))
       ->capture_default_str();
-  app.add_option("--hormones", hormones, "hormones per controller")->capture_default_str();
-  app.add_option("--rules", rules, "rules per controller")->capture_default_str();
-  app.add_option("--population", population, "individuals per generation")->capture_default_str();
-  app.add_option("--generations", generations, "generations")->capture_default_str();
-  app.add_option("--elitism", elitism, "best individuals copied (and re-evaluated)")
+  app.add_option("--hormones", o->hormones, "hormones per controller")->capture_default_str();
+  app.add_option("--rules", o->rules, "rules per controller")->capture_default_str();
+  app.add_option("--population", o->population, "individuals per generation")
       ->capture_default_str();
-  app.add_option("--mutation-rate", mutation_rate, "probability that a gene mutates")
+  app.add_option("--generations", o->generations, "generations")->capture_default_str();
+  app.add_option("--elitism", o->elitism, "best individuals copied (and re-evaluated)")
       ->capture_default_str();
-  app.add_option("--mutation-max-change", mutation_max_change, "largest change of a real field")
+  app.add_option("--mutation-rate", o->mutation_rate, "probability that a gene mutates")
       ->capture_default_str();
-  app.add_option("--mutation-profile", mutation_profile,
+  app.add_option("--mutation-max-change", o->mutation_max_change, "largest change of a real field")
+      ->capture_default_str();
+  app.add_option("--mutation-profile", o->mutation_profile,
                  "step of each mutated field: paper (every real field by at most the max change) "
                  "or fine-doses (the first briefing's: AHHS2 doses by 1/50 of it, indices by 1)")
       ->check(CLI::IsMember({"paper", "fine-doses"}))
       ->capture_default_str();
-  app.add_option("--crossover-rate", crossover_rate, "two-point crossover rate")
+  app.add_option("--crossover-rate", o->crossover_rate, "two-point crossover rate")
       ->capture_default_str();
-  app.add_option("--seed", seed, "run seed (every random draw of the run derives from it)")
+  app.add_option("--seed", o->seed, "run seed (every random draw of the run derives from it)")
       ->check(ahhs::modules::SeedTextError)
       ->capture_default_str();
-  auto* out_opt = app.add_option("--out", out_dir, "run directory (default: runs/<time>-<task>)");
+  auto* out_opt =
+      app.add_option("--out", o->out_dir, "run directory (default: runs/<time>-<task>)");
   auto* resume_opt =
-      app.add_option("--resume", resume_dir, "continue the run stored in this directory");
+      app.add_option("--resume", o->resume_dir, "continue the run stored in this directory");
   out_opt->excludes(resume_opt);
-  app.add_flag("--overwrite", overwrite, "replace an existing run directory given with --out");
-  app.add_flag("--show-config", show_config,
+  app.add_flag("--overwrite", o->overwrite, "replace an existing run directory given with --out");
+  app.add_flag("--show-config", o->show_config,
                "print the run's configuration as JSON and exit (nothing is created or run)");
-  app.add_option("--workers", workers,
+  app.add_option("--workers", o->workers,
                  "local worker processes to start (default: one per core; 0: only external)")
       ->check(CLI::Range(0, 256));
-  app.add_option("--arena-kind", arena, "how local workers evaluate: direct, fused or processes")
+  app.add_option("--arena-kind", o->arena, "how local workers evaluate: direct, fused or processes")
       ->check(CLI::IsMember({"direct", "fused", "processes"}))
       ->capture_default_str();
-  app.add_option("--lcm-url", url, "LCM URL of the evaluation farm (ttl=1 to use LAN workers)")
+  app.add_option("--lcm-url", o->url, "LCM URL of the evaluation farm (ttl=1 to use LAN workers)")
       ->capture_default_str();
-  app.add_option("--job-deadline", job_deadline, "seconds before an evaluation is re-issued")
+  app.add_option("--job-deadline", o->job_deadline, "seconds before an evaluation is re-issued")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  app.add_option("--worker-wait", worker_wait,
+  app.add_option("--worker-wait", o->worker_wait,
                  "seconds to wait for any worker before giving up (the run stays resumable)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+}
+
+// The run: a new one from the options, or the stored one (--resume). Returns nullptr after
+// --show-config printed the configuration. Throws with a message for the user.
+std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::EvolveConfig* config) {
+  std::unique_ptr<ev::RunStore> store;
+  if (!o.resume_dir.empty()) {
+    for (const char* name :
+         {"--scenario", "--joints", "--modules", "--duration", "--variant", "--hormones", "--rules",
+          "--population", "--generations", "--elitism", "--mutation-rate", "--mutation-max-change",
+          "--mutation-profile", "--crossover-rate", "--seed", "--overwrite"})
+      if (app.count(name))
+        throw std::invalid_argument(std::string(name) +
+                                    " cannot be given with --resume: a resumed run keeps "
+                                    "its stored configuration");
+    store = ev::RunStore::Open(o.resume_dir,
+                               o.show_config ? ev::StoreAccess::kRead : ev::StoreAccess::kWrite);
+    *config = ev::ConfigFromJson(store->config());
+    if (o.show_config) {
+      std::cout << ev::ConfigToJson(*config).dump(2) << '\n';
+      return nullptr;
+    }
+  } else {
+    config->scenario =
+        ahhs::sim::MakeScenarioConfig(ahhs::sim::ParseScenarioKind(o.scenario),
+                                      ahhs::sim::ParseJoints(o.joints), o.modules, o.duration);
+    config->variant =
+        o.variant == "ahhs1" ? ahhs::modules::Variant::kAhhs1 : ahhs::modules::Variant::kAhhs2;
+    config->hormones = o.hormones;
+    config->rules = o.rules;
+    config->ga.population = o.population;
+    config->ga.generations = o.generations;
+    config->ga.elitism = o.elitism;
+    config->ga.mutation.gene_rate = o.mutation_rate;
+    config->ga.mutation.max_change = o.mutation_max_change;
+    config->ga.mutation.profile = ahhs::modules::ParseMutationProfile(o.mutation_profile);
+    config->ga.crossover_rate = o.crossover_rate;
+    config->seed = o.seed;
+    if (o.duration < 0) throw std::invalid_argument("--duration must not be negative");
+    const std::string error = ev::CheckEvolveConfig(*config);
+    if (!error.empty()) throw std::invalid_argument(error);
+    if (o.show_config) {
+      std::cout << ev::ConfigToJson(*config).dump(2) << '\n';
+      return nullptr;
+    }
+    if (o.out_dir.empty()) {
+      char stamp[32];
+      const std::time_t t = std::time(nullptr);
+      std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&t));
+      o.out_dir = std::string("runs/") + stamp + "-" + o.scenario;
+    }
+    const std::string run_id =
+        HostName() + "-" + std::to_string(getpid()) + "-" + std::to_string(std::time(nullptr));
+    store = ev::RunStore::Create(o.out_dir, run_id, config->seed, ev::ConfigToJson(*config),
+                                 o.overwrite);
+  }
+  return store;
+}
+
+// The end of a finished run: where it is, its best fitness, and the command that replays it.
+void PrintSummary(const ev::RunStore& store, const ev::EvolveConfig& config) {
+  const ev::IndividualRecord best = store.Best();
+  std::string replay = ahhs::arena::ExecutableDir() + "/ahhs-launch --scenario " +
+                       std::string(ahhs::sim::ScenarioName(config.scenario.kind));
+  if (config.scenario.kind == ahhs::sim::ScenarioKind::kGait)
+    replay += " --joints " + std::string(ahhs::sim::JointsName(config.scenario.joints)) +
+              " --modules " + std::to_string(config.scenario.num_modules);
+  if (config.scenario.duration > 0) {
+    char d[32];
+    std::snprintf(d, sizeof d, "%.17g", config.scenario.duration);
+    replay += std::string(" --duration ") + d;
+  }
+  replay += " --genome " + store.dir() + "/best.json --seed " + std::to_string(best.eval_seed);
+  std::printf("done: %d generations in %s\n", config.ga.generations, store.dir().c_str());
+  std::printf("best fitness: %.17g (generation %d, individual %d)\n", best.evaluation.fitness,
+              best.generation, best.index);
+  std::printf("replay the best genome: %s\n", replay.c_str());
+}
+
+ev::FarmOptions FarmOptionsFor(const Options& o, const ev::EvolveConfig& config,
+                               const std::string& wire_run) {
+  ev::FarmOptions farm;
+  farm.run = wire_run;
+  farm.config = config.scenario;
+  farm.population = config.ga.population;
+  farm.lease.job_deadline =
+      std::chrono::milliseconds(static_cast<std::int64_t>(o.job_deadline * 1000));
+  farm.no_worker_timeout =
+      std::chrono::milliseconds(static_cast<std::int64_t>(o.worker_wait * 1000));
+  return farm;
+}
+
+// A local worker that dies is started again, this many times per session at most.
+constexpr int kMaxWorkerRestarts = 20;
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"ahhs-evolve: evolves hormone controllers (the paper's GA) on evaluation workers"};
+  Options options;
+  AddOptions(app, &options);
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
-  // The run: a new one from the options, or the stored one.
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
-  std::unique_ptr<ev::RunStore> store;
   ev::EvolveConfig config;
+  std::unique_ptr<ev::RunStore> store;
   try {
-    if (!resume_dir.empty()) {
-      for (const char* name : {"--scenario", "--joints", "--modules", "--duration", "--variant",
-                               "--hormones", "--rules", "--population", "--generations",
-                               "--elitism", "--mutation-rate", "--mutation-max-change",
-                               "--mutation-profile", "--crossover-rate", "--seed", "--overwrite"})
-        if (app.count(name))
-          throw std::invalid_argument(std::string(name) +
-                                      " cannot be given with --resume: a resumed run keeps "
-                                      "its stored configuration");
-      store = ev::RunStore::Open(resume_dir);
-      config = ev::ConfigFromJson(store->config());
-      if (show_config) {
-        std::cout << ev::ConfigToJson(config).dump(2) << '\n';
-        return 0;
-      }
-    } else {
-      config.scenario =
-          ahhs::sim::MakeScenarioConfig(ahhs::sim::ParseScenarioKind(scenario),
-                                        ahhs::sim::ParseJoints(joints), modules, duration);
-      config.variant =
-          variant == "ahhs1" ? ahhs::modules::Variant::kAhhs1 : ahhs::modules::Variant::kAhhs2;
-      config.hormones = hormones;
-      config.rules = rules;
-      config.ga.population = population;
-      config.ga.generations = generations;
-      config.ga.elitism = elitism;
-      config.ga.mutation.gene_rate = mutation_rate;
-      config.ga.mutation.max_change = mutation_max_change;
-      config.ga.mutation.profile = ahhs::modules::ParseMutationProfile(mutation_profile);
-      config.ga.crossover_rate = crossover_rate;
-      config.seed = seed;
-      if (duration < 0) throw std::invalid_argument("--duration must not be negative");
-      const std::string error = ev::CheckEvolveConfig(config);
-      if (!error.empty()) throw std::invalid_argument(error);
-      if (show_config) {
-        std::cout << ev::ConfigToJson(config).dump(2) << '\n';
-        return 0;
-      }
-      if (out_dir.empty()) {
-        char stamp[32];
-        const std::time_t t = std::time(nullptr);
-        std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&t));
-        out_dir = std::string("runs/") + stamp + "-" + scenario;
-      }
-      const std::string run_id =
-          HostName() + "-" + std::to_string(getpid()) + "-" + std::to_string(std::time(nullptr));
-      store =
-          ev::RunStore::Create(out_dir, run_id, config.seed, ev::ConfigToJson(config), overwrite);
-    }
+    store = OpenRun(app, options, &config);
   } catch (const std::exception& e) {
     std::cerr << "ahhs-evolve: " << e.what() << '\n';
-    return 1;
+    return ahhs::cli::kExitFailure;
   }
+  if (!store) return 0;  // --show-config
   const std::string dir = store->dir();
   const int session = store->BeginSession(command_line);
   const int first = store->LastGeneration() + 1;
@@ -269,47 +322,41 @@ int main(int argc, char** argv) {
   const std::string self = ahhs::arena::ExecutableDir() + "/ahhs-evolve";
 
   // Local workers, started before our own bus exists.
-  if (workers < 0) workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (options.workers < 0)
+    options.workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   ahhs::arena::ChildProcesses local;
   int restarts = 0;
   const std::string worker_bin = ahhs::arena::ExecutableDir() + "/ahhs-worker";
-  for (int k = 0; k < workers && first < config.ga.generations; ++k)
-    local.Start(
-        "local worker " + std::to_string(k),
-        {worker_bin, "--quiet", "--lcm-url", url, "--arena-kind", arena, "--run", store->run_id(),
-         "--id", HostName() + ":" + std::to_string(getpid()) + "/w" + std::to_string(k)},
-        true);
+  for (int k = 0; k < options.workers && first < config.ga.generations; ++k)
+    local.Start("local worker " + std::to_string(k),
+                {worker_bin, "--quiet", "--lcm-url", options.url, "--arena-kind", options.arena,
+                 "--run", store->run_id(), "--id",
+                 HostName() + ":" + std::to_string(getpid()) + "/w" + std::to_string(k)},
+                true);
 
   Progress progress(first, config.ga.generations);
   std::printf("run directory: %s\n", dir.c_str());
-  std::printf("%s %s, %s %d hormones x %d rules, population %d, generations %d, seed %llu%s\n",
-              ahhs::sim::ScenarioName(config.scenario.kind),
-              config.scenario.kind == ahhs::sim::ScenarioKind::kGait
-                  ? (std::string(ahhs::sim::JointsName(config.scenario.joints)) + " docking, " +
-                     std::to_string(config.scenario.num_modules) + " modules")
-                        .c_str()
-                  : "cart and pole",
-              ahhs::modules::VariantName(config.variant), config.hormones, config.rules,
-              config.ga.population, config.ga.generations,
-              static_cast<unsigned long long>(config.seed),
-              first > 0 ? (", resuming at generation " + std::to_string(first)).c_str() : "");
+  std::printf(
+      "%s %s, %s %d hormones x %d rules, population %d, "
+      "generations %d, seed %llu%s\n",
+      ahhs::sim::ScenarioName(config.scenario.kind),
+      config.scenario.kind == ahhs::sim::ScenarioKind::kGait
+          ? (std::string(ahhs::sim::JointsName(config.scenario.joints)) + " docking, " +
+             std::to_string(config.scenario.num_modules) + " modules")
+                .c_str()
+          : "cart and pole",
+      ahhs::modules::VariantName(config.variant), config.hormones, config.rules,
+      config.ga.population, config.ga.generations, static_cast<unsigned long long>(config.seed),
+      first > 0 ? (", resuming at generation " + std::to_string(first)).c_str() : "");
   std::printf("workers: %d local (%s arena)%s; more: %s/ahhs-worker --lcm-url '%s' --run %s\n",
-              static_cast<int>(local.size()), arena.c_str(),
-              workers == 0 ? ", waiting for external ones" : "",
-              ahhs::arena::ExecutableDir().c_str(), url.c_str(), store->run_id().c_str());
+              static_cast<int>(local.size()), options.arena.c_str(),
+              options.workers == 0 ? ", waiting for external ones" : "",
+              ahhs::arena::ExecutableDir().c_str(), options.url.c_str(), store->run_id().c_str());
   std::fflush(stdout);
 
   int exit_code = 0;
   try {
-    auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
-    ev::FarmOptions options;
-    options.run = wire_run;
-    options.config = config.scenario;
-    options.population = config.ga.population;
-    options.lease.job_deadline =
-        std::chrono::milliseconds(static_cast<std::int64_t>(job_deadline * 1000));
-    options.no_worker_timeout =
-        std::chrono::milliseconds(static_cast<std::int64_t>(worker_wait * 1000));
+    auto bus = ahhs::bus::OpenBusWithFaultInjection(options.url);
     int current_generation = first;
     ev::FarmEvaluator::Hooks hooks;
     hooks.interrupted = [&] { return g_interrupts > 0; };
@@ -332,7 +379,7 @@ int main(int argc, char** argv) {
       progress.Evaluated(current_generation, done, total);
     };
     hooks.report = [&](const std::string& text) { progress.Say(text); };
-    ev::FarmEvaluator farm(bus.get(), options, hooks);
+    ev::FarmEvaluator farm(bus.get(), FarmOptionsFor(options, config, wire_run), hooks);
 
     ev::EvolutionHooks evolution_hooks;
     evolution_hooks.on_generation = [&](const ev::GenerationRecord& r) {
@@ -364,24 +411,8 @@ int main(int argc, char** argv) {
   local.StopAll(std::chrono::seconds(5));
   if (exit_code != 0) return exit_code;
 
-  // Summary.
   try {
-    const ev::IndividualRecord best = store->Best();
-    std::string replay = ahhs::arena::ExecutableDir() + "/ahhs-launch --scenario " +
-                         std::string(ahhs::sim::ScenarioName(config.scenario.kind));
-    if (config.scenario.kind == ahhs::sim::ScenarioKind::kGait)
-      replay += " --joints " + std::string(ahhs::sim::JointsName(config.scenario.joints)) +
-                " --modules " + std::to_string(config.scenario.num_modules);
-    if (config.scenario.duration > 0) {
-      char d[32];
-      std::snprintf(d, sizeof d, "%.17g", config.scenario.duration);
-      replay += std::string(" --duration ") + d;
-    }
-    replay += " --genome " + dir + "/best.json --seed " + std::to_string(best.eval_seed);
-    std::printf("done: %d generations in %s\n", config.ga.generations, dir.c_str());
-    std::printf("best fitness: %.17g (generation %d, individual %d)\n", best.evaluation.fitness,
-                best.generation, best.index);
-    std::printf("replay the best genome: %s\n", replay.c_str());
+    PrintSummary(*store, config);
   } catch (const std::exception& e) {
     std::cerr << "ahhs-evolve: " << e.what() << '\n';
     return ahhs::cli::kExitFailure;

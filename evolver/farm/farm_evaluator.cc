@@ -49,125 +49,141 @@ int FarmEvaluator::WaitForWorkers(int count, std::chrono::milliseconds timeout) 
   return static_cast<int>(seen_.size());
 }
 
-std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>& jobs) {
-  LeaseTable table(options_.lease);
+// One generation's jobs on their way through the farm.
+struct FarmEvaluator::Batch {
+  Batch(const std::vector<EvaluationJob>& j, const LeaseOptions& lease) : jobs(j), table(lease) {}
+  const std::vector<EvaluationJob>& jobs;
+  LeaseTable table;
   std::map<std::int64_t, std::size_t> slot_of;  // job id -> position in `jobs`
+  std::vector<Evaluation> results;
+  FarmClock::time_point last_worker_seen = FarmClock::now();
+};
+
+std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>& jobs) {
+  Batch batch(jobs, options_.lease);
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     const std::int64_t id =
         static_cast<std::int64_t>(jobs[k].generation) * options_.population + jobs[k].index;
-    slot_of[id] = k;
-    table.AddJob(id);
+    batch.slot_of[id] = k;
+    batch.table.AddJob(id);
   }
-  std::vector<Evaluation> results(jobs.size());
-  auto last_worker_seen = FarmClock::now();
+  batch.results.resize(jobs.size());
   std::size_t last_done = 0;
-  while (!table.AllDone()) {
+  while (!batch.table.AllDone()) {
     hooks_.poll();
     if (hooks_.interrupted()) throw FarmInterrupted();
     const auto now = FarmClock::now();
-    // Feed what the workers said into the lease table.
-    for (const auto& [name, w] : seen_) {
-      if (now - w.heard > options_.lease.worker_silence || quarantined_.count(name)) continue;
-      std::vector<std::int64_t> ours;
-      int others = 0;
-      if (SameRun(w.status.run, options_.run))
-        ours = w.status.jobs;
-      else if (!w.status.run.empty())  // busy with, or dedicated to, another run
-        others = std::max(static_cast<int>(w.status.jobs.size()), w.status.slots);
-      table.OnWorkerStatus(name, w.status.slots, ours, others, w.heard);
-    }
-    for (const auto& r : table.Expire(now)) {
+    FeedStatuses(&batch, now);
+    for (const auto& r : batch.table.Expire(now)) {
       ++counters_.reissued;
       hooks_.report("job " + std::to_string(r.job) + " re-issued (" + r.reason + ", worker " +
                     r.worker + ")");
     }
-    for (const Dispatch& d : table.Schedule(now)) {
-      const EvaluationJob& j = jobs[slot_of.at(d.job)];
-      FarmJob job;
-      job.run = options_.run;
-      job.job = d.job;
-      job.attempt = d.attempt;
-      job.worker = d.worker;
-      job.config = options_.config;
-      job.seed = j.seed;
-      job.deadline_utime = bus::NowUtime() + std::chrono::duration_cast<std::chrono::microseconds>(
-                                                 options_.lease.job_deadline)
-                                                 .count();
-      job.genome = *j.genome;
-      bus::PublishTyped(*bus_, bus::kEvalRequestChannel, RequestMessage(job));
-      ++counters_.dispatched;
-    }
-    if (table.LiveWorkers(now) > 0) {
-      last_worker_seen = now;
-    } else if (now - last_worker_seen > options_.no_worker_timeout) {
-      std::string why = "no evaluation worker has answered for " +
-                        std::to_string(options_.no_worker_timeout.count() / 1000) +
-                        " s (start one with ahhs-worker, or give ahhs-evolve --workers N)";
-      if (!quarantined_.empty()) {
-        why += "; workers given no more jobs after invalid results:";
-        for (const auto& q : quarantined_) why += " " + q;
-      }
-      throw FarmError(why);
-    }
+    Dispatch(&batch, now);
+    CheckWorkers(&batch, now);
     bus_->Handle(std::chrono::milliseconds(20));
-    const auto heard = FarmClock::now();
-    for (const FarmResult& o : inbox_) {
-      auto slot = slot_of.find(o.job);
-      if (slot == slot_of.end()) {
-        ++counters_.duplicates;
-        continue;
-      }
-      const bool valid =
-          o.status == FarmResult::Status::kOk && std::isfinite(o.fitness) && std::isfinite(o.cost);
-      const auto verdict = table.OnResult(o.job, o.attempt, o.worker, valid, heard);
-      switch (verdict) {
-        case LeaseTable::Verdict::kAccepted: {
-          Evaluation& e = results[slot->second];
-          e.fitness = o.fitness;
-          e.cost = o.cost;
-          e.worker = o.worker;
-          e.attempt = o.attempt;
-          e.wall_time = o.wall_time;
-          e.message = o.message;
-          counters_.states_missed += o.states_missed;
-          break;
-        }
-        case LeaseTable::Verdict::kIgnored:
-          ++counters_.duplicates;
-          break;
-        case LeaseTable::Verdict::kReissued:
-        case LeaseTable::Verdict::kFailed: {
-          ++counters_.invalid_results;
-          const std::string what =
-              o.status == FarmResult::Status::kOk
-                  ? "a non-finite fitness"
-                  : (o.status == FarmResult::Status::kRefused ? "a refusal: " : "an error: ") +
-                        o.message;
-          hooks_.report("worker " + o.worker + " returned " + what + " for job " +
-                        std::to_string(o.job) +
-                        (verdict == LeaseTable::Verdict::kFailed ? "; giving up" : "; re-issued"));
-          if (++invalid_by_worker_[o.worker] == options_.quarantine_after &&
-              quarantined_.insert(o.worker).second) {
-            table.Forget(o.worker);
-            hooks_.report("worker " + o.worker + " returned " +
-                          std::to_string(options_.quarantine_after) +
-                          " invalid results; it gets no more jobs from this run");
-          }
-          if (verdict == LeaseTable::Verdict::kFailed)
-            throw FarmError("job " + std::to_string(o.job) + " failed " +
-                            std::to_string(options_.lease.max_invalid) +
-                            " times; last answer: " + what);
-          break;
-        }
-      }
-    }
-    inbox_.clear();
-    if (table.done() != last_done) {
-      last_done = table.done();
+    TakeResults(&batch, FarmClock::now());
+    if (batch.table.done() != last_done) {
+      last_done = batch.table.done();
       hooks_.progress(last_done, jobs.size());
     }
   }
-  return results;
+  return std::move(batch.results);
+}
+
+void FarmEvaluator::FeedStatuses(Batch* batch, FarmClock::time_point now) {
+  for (const auto& [name, w] : seen_) {
+    if (now - w.heard > options_.lease.worker_silence || quarantined_.count(name)) continue;
+    std::vector<std::int64_t> ours;
+    int others = 0;
+    if (SameRun(w.status.run, options_.run))
+      ours = w.status.jobs;
+    else if (!w.status.run.empty())  // busy with, or dedicated to, another run
+      others = std::max(static_cast<int>(w.status.jobs.size()), w.status.slots);
+    batch->table.OnWorkerStatus(name, w.status.slots, ours, others, w.heard);
+  }
+}
+
+void FarmEvaluator::Dispatch(Batch* batch, FarmClock::time_point now) {
+  for (const auto& d : batch->table.Schedule(now)) {
+    const EvaluationJob& j = batch->jobs[batch->slot_of.at(d.job)];
+    FarmJob job;
+    job.run = options_.run;
+    job.job = d.job;
+    job.attempt = d.attempt;
+    job.worker = d.worker;
+    job.config = options_.config;
+    job.seed = j.seed;
+    job.deadline_utime =
+        bus::NowUtime() +
+        std::chrono::duration_cast<std::chrono::microseconds>(options_.lease.job_deadline).count();
+    job.genome = *j.genome;
+    bus::PublishTyped(*bus_, bus::kEvalRequestChannel, RequestMessage(job));
+    ++counters_.dispatched;
+  }
+}
+
+void FarmEvaluator::CheckWorkers(Batch* batch, FarmClock::time_point now) {
+  if (batch->table.LiveWorkers(now) > 0) {
+    batch->last_worker_seen = now;
+    return;
+  }
+  if (now - batch->last_worker_seen <= options_.no_worker_timeout) return;
+  std::string why = "no evaluation worker has answered for " +
+                    std::to_string(options_.no_worker_timeout.count() / 1000) +
+                    " s (start one with ahhs-worker, or give ahhs-evolve --workers N)";
+  if (!quarantined_.empty()) {
+    why += "; workers given no more jobs after invalid results:";
+    for (const auto& q : quarantined_) why += " " + q;
+  }
+  throw FarmError(why);
+}
+
+void FarmEvaluator::TakeResults(Batch* batch, FarmClock::time_point heard) {
+  for (const FarmResult& o : inbox_) {
+    auto slot = batch->slot_of.find(o.job);
+    if (slot == batch->slot_of.end()) {
+      ++counters_.duplicates;
+      continue;
+    }
+    const bool valid =
+        o.status == FarmResult::Status::kOk && std::isfinite(o.fitness) && std::isfinite(o.cost);
+    const auto verdict = batch->table.OnResult(o.job, o.attempt, o.worker, valid, heard);
+    if (verdict == LeaseTable::Verdict::kAccepted) {
+      Evaluation& e = batch->results[slot->second];
+      e.fitness = o.fitness;
+      e.cost = o.cost;
+      e.worker = o.worker;
+      e.attempt = o.attempt;
+      e.wall_time = o.wall_time;
+      e.message = o.message;
+      counters_.states_missed += o.states_missed;
+    } else if (verdict == LeaseTable::Verdict::kIgnored) {
+      ++counters_.duplicates;
+    } else {
+      OnInvalid(batch, o, verdict == LeaseTable::Verdict::kFailed);
+    }
+  }
+  inbox_.clear();
+}
+
+void FarmEvaluator::OnInvalid(Batch* batch, const FarmResult& o, bool failed) {
+  ++counters_.invalid_results;
+  const std::string what =
+      o.status == FarmResult::Status::kOk
+          ? "a non-finite fitness"
+          : (o.status == FarmResult::Status::kRefused ? "a refusal: " : "an error: ") + o.message;
+  hooks_.report("worker " + o.worker + " returned " + what + " for job " + std::to_string(o.job) +
+                (failed ? "; giving up" : "; re-issued"));
+  if (++invalid_by_worker_[o.worker] == options_.quarantine_after &&
+      quarantined_.insert(o.worker).second) {
+    batch->table.Forget(o.worker);
+    hooks_.report("worker " + o.worker + " returned " + std::to_string(options_.quarantine_after) +
+                  " invalid results; it gets no more jobs from this run");
+  }
+  if (failed)
+    throw FarmError("job " + std::to_string(o.job) + " failed " +
+                    std::to_string(options_.lease.max_invalid) + " times; last answer: " + what);
 }
 
 }  // namespace ahhs::evolver

@@ -87,6 +87,13 @@ class FarmEvaluator : public FitnessEvaluator {
   };
   void OnStatus(const worker_status_t& msg);
   void OnResult(const eval_result_t& msg);
+  // The steps of one Evaluate() round.
+  struct Batch;
+  void FeedStatuses(Batch* batch, FarmClock::time_point now);
+  void Dispatch(Batch* batch, FarmClock::time_point now);
+  void CheckWorkers(Batch* batch, FarmClock::time_point now);
+  void TakeResults(Batch* batch, FarmClock::time_point heard);
+  void OnInvalid(Batch* batch, const FarmResult& result, bool failed);
 
   bus::Bus* bus_;
   FarmOptions options_;

@@ -190,12 +190,26 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
     return sim->Fitness();
   };
 
-  std::vector<double> physics, replay, direct, fused, memq, warm, fused_ratio, fused_replay_ratio,
-      memq_ratio, memq_replay_ratio, warm_ratio;
+  // One way of running the episode: its wall times and the last fitness it gave.
+  struct Way {
+    std::vector<double> seconds;
+    double fitness = std::nan("");
+    void Add(std::pair<double, double> timed) {
+      seconds.push_back(timed.first);
+      fitness = timed.second;
+    }
+    double median() const { return Median(seconds); }
+  };
+  // Ratios are taken within a round (this VM's speed drifts), then the median over the rounds.
+  struct Ratio {
+    std::vector<double> values;
+    void Add(const Way& a, const Way& b) { values.push_back(a.seconds.back() / b.seconds.back()); }
+    double median() const { return Median(values); }
+  };
+  Way physics, replay, direct, fused, memq, warm;
+  Ratio fused_ratio, fused_replay_ratio, memq_ratio, memq_replay_ratio, warm_ratio;
   // Every fitness any run gave: one value, or the arenas disagree (a bug, not noise).
   std::set<double> fitnesses;
-  double replay_fitness = 0, direct_fitness = 0, fused_fitness = 0, memq_fitness = 0,
-         warm_fitness = std::nan("");
   al::EpisodeSpec memq_spec = spec;
   memq_spec.fused_url = "memq://";
   double start_s = std::nan("");
@@ -213,37 +227,26 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
     failure = e.what();
   }
   for (int r = 0; r < repeats; ++r) {
-    physics.push_back(Timed(physics_only).first);
-    const auto p = Timed(physics_replay);
-    replay.push_back(p.first);
-    replay_fitness = p.second;
-    fitnesses.insert(p.second);
-    const auto d = Timed([&] { return al::RunDirect(spec); });
-    const auto f = Timed([&] { return al::RunFused(spec).fitness; });
-    const auto q = Timed([&] { return al::RunFused(memq_spec).fitness; });
-    direct.push_back(d.first);
-    fused.push_back(f.first);
-    fused_ratio.push_back(f.first / d.first);
-    fused_replay_ratio.push_back(f.first / p.first);
-    memq.push_back(q.first);
-    memq_ratio.push_back(q.first / d.first);
-    memq_replay_ratio.push_back(q.first / p.first);
-    direct_fitness = d.second;
-    fused_fitness = f.second;
-    memq_fitness = q.second;
-    fitnesses.insert({d.second, f.second, q.second});
+    physics.Add(Timed(physics_only));
+    replay.Add(Timed(physics_replay));
+    direct.Add(Timed([&] { return al::RunDirect(spec); }));
+    fused.Add(Timed([&] { return al::RunFused(spec).fitness; }));
+    memq.Add(Timed([&] { return al::RunFused(memq_spec).fitness; }));
+    fused_ratio.Add(fused, direct);
+    fused_replay_ratio.Add(fused, replay);
+    memq_ratio.Add(memq, direct);
+    memq_replay_ratio.Add(memq, replay);
+    fitnesses.insert({replay.fitness, direct.fitness, fused.fitness, memq.fitness});
     if (processes && failure.empty()) {
-      const auto w = Timed([&] {
+      warm.Add(Timed([&] {
         al::EpisodeSpec next = spec;
         next.episode = r + 1;  // every episode on the bus has its own id
         const auto result = processes->Run(next, [](std::string*) { return true; });
         if (!result.ok) failure = result.error;
         return result.ok ? result.fitness : std::nan("");
-      });
-      warm.push_back(w.first);
-      warm_ratio.push_back(w.first / f.first);
-      warm_fitness = w.second;
-      if (!std::isnan(w.second)) fitnesses.insert(w.second);
+      }));
+      warm_ratio.Add(warm, fused);
+      if (!std::isnan(warm.fitness)) fitnesses.insert(warm.fitness);
     }
   }
   processes.reset();
@@ -269,24 +272,25 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
       "gait, 5 modules, damped, 60 s at 20 Hz, AHHS2 5 hormones x 30 rules, seed %llu, median "
       "of %d rounds\n",
       static_cast<unsigned long long>(seed), repeats);
-  std::printf("  physics only (wave drive)      %7.3f s   (another trajectory)\n", Median(physics));
+  std::printf("  physics only (wave drive)      %7.3f s   (another trajectory)\n",
+              physics.median());
   std::printf("  physics only (same episode)    %7.3f s   fitness %.17g   (recorded commands)\n",
-              Median(replay), replay_fitness);
-  std::printf("  physics + controllers, no bus  %7.3f s   fitness %.17g\n", Median(direct),
-              direct_fitness);
+              replay.median(), replay.fitness);
+  std::printf("  physics + controllers, no bus  %7.3f s   fitness %.17g\n", direct.median(),
+              direct.fitness);
   std::printf(
       "  fused arena (inproc://)        %7.3f s   fitness %.17g   %.2fx physics+controllers, "
       "%.2fx physics only\n",
-      Median(fused), fused_fitness, Median(fused_ratio), Median(fused_replay_ratio));
+      fused.median(), fused.fitness, fused_ratio.median(), fused_replay_ratio.median());
   std::printf(
       "  fused arena on LCM's memq://   %7.3f s   fitness %.17g   %.2fx physics+controllers, "
       "%.2fx physics only\n",
-      Median(memq), memq_fitness, Median(memq_ratio), Median(memq_replay_ratio));
+      memq.median(), memq.fitness, memq_ratio.median(), memq_replay_ratio.median());
   std::printf("  multi-process arena (udpm)     %7.3f s   fitness %.17g   %.2fx fused\n",
-              Median(warm), warm_fitness, Median(warm_ratio));
+              warm.median(), warm.fitness, warm_ratio.median());
   std::printf("    (starting its 7 processes    %7.3f s, once per arena)\n", start_s);
   std::printf("  ahhs-launch, whole run         %7.3f s   fitness %.17g   %.2fx fused\n",
-              cold.first, cold.second, cold.first / Median(fused));
+              cold.first, cold.second, cold.first / fused.median());
   if (!std::isnan(cold.second)) fitnesses.insert(cold.second);
   if (fitnesses.size() == 1) {
     std::printf("  every run gave the same fitness to the bit\n");

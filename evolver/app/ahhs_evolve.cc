@@ -215,6 +215,7 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
       std::cout << ev::ConfigToJson(*config).dump(2) << '\n';
       return nullptr;
     }
+    store->Export();  // the database is the truth: rebuild files a kill left short or missing
   } else {
     config->scenario =
         ahhs::sim::MakeScenarioConfig(ahhs::sim::ParseScenarioKind(o.scenario),

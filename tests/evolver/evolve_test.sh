@@ -160,6 +160,16 @@ rc=$?
 grep -q "no evaluation worker has answered" $tmp/out || fail "no-worker message: $(cat $tmp/out)"
 grep -q "continue with: $E --resume $tmp/noworker" $tmp/out || fail "no resume hint"
 
+# Files derived from the database are rebuilt by --resume when a kill left them short or missing.
+cp $tmp/p-direct-1/generations.csv $tmp/gen.csv
+sed -i '$d' $tmp/p-direct-1/generations.csv
+rm $tmp/p-direct-1/best/gen-0004.json $tmp/p-direct-1/best.json
+$E --resume $tmp/p-direct-1 >$tmp/out 2>&1 || fail "resume of a complete run: $(cat $tmp/out)"
+grep -q "already complete" $tmp/out || fail "complete run: $(cat $tmp/out)"
+cmp -s $tmp/gen.csv $tmp/p-direct-1/generations.csv || fail "generations.csv not rebuilt"
+[[ -s $tmp/p-direct-1/best/gen-0004.json && -s $tmp/p-direct-1/best.json ]] || fail "best files not rebuilt"
+echo "a complete run's missing exports are rebuilt by --resume"
+
 echo "== 5. runs are isolated"
 "$bin/ahhs-worker" --lcm-url "$url" --id stranger --run someone-else >$tmp/stranger.out 2>&1 &
 $E $pend --out $tmp/iso-a --workers 1 >$tmp/iso-a.out 2>&1 &

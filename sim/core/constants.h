@@ -6,6 +6,11 @@
 
 namespace ahhs::sim {
 
+// The physics a fitness was measured with. Bump it with every change that changes any fitness
+// (constants, solver, sensors): a study takes an exported run only when it was made with the
+// same physics (tools/study), since the run store cannot tell otherwise.
+inline constexpr const char* kPhysicsVersion = "2026-12-01";
+
 struct PendulumConstants {
   // s per controller tick. The paper's slow sampling: a pendulum that keeps turning passes the
   // bottom at 2 sqrt(g / l) = 8.86 rad/s or a little faster, about 9 degrees per tick

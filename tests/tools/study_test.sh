@@ -133,7 +133,17 @@ grep -q "reproduced exactly" $tmp/out || fail "exported best does not reproduce 
 # A plan that changed a configuration: its exported runs are not taken.
 sed 's/^rules = 20$/rules = 21/' $tmp/plan.toml >$tmp/plan2.toml
 "$S" run $tmp/plan2.toml --out $tmp/D $opts --from-export $tmp/E >$tmp/D.out 2>&1 || fail "study D: $(cat $tmp/D.out)"
-grep -q "pend1/seed-1: not taken, its configuration differs" $tmp/D.out || fail "changed config taken: $(cat $tmp/D.out)"
+grep -q "pend1/seed-1: not taken, its configuration or physics differs" $tmp/D.out || fail "changed config taken: $(cat $tmp/D.out)"
+
+# --only runs the named configurations now; the others wait. An exported run of other physics
+# (sim::kPhysicsVersion) is not taken.
+"$S" run $tmp/plan.toml --out $tmp/F $opts --only pend1 >$tmp/F.out 2>&1 || fail "--only: $(cat $tmp/F.out)"
+[[ $(grep -c started $tmp/F.out) == 2 ]] && ! grep -q "started pend2" $tmp/F.out && grep -q "2 runs of the others wait" $tmp/F.out ||
+  fail "--only: $(cat $tmp/F.out)"
+"$S" run --resume $tmp/F $opts --only nothing >$tmp/out 2>&1; [[ $? == 2 ]] && grep -q "no such configuration" $tmp/out || fail "--only nothing"
+sed -i 's/"physics": "[^"]*"/"physics": "older"/' $tmp/E/pend1/seed-2/summary.json
+"$S" run $tmp/plan.toml --out $tmp/G $opts --from-export $tmp/E --only pend1 >$tmp/G.out 2>&1 || fail "G: $(cat $tmp/G.out)"
+grep -q "pend1/seed-2: not taken, its configuration or physics differs" $tmp/G.out || fail "other physics taken: $(cat $tmp/G.out)"
 
 echo "== 5. status"
 "$S" status $tmp/A >$tmp/status || fail "status"

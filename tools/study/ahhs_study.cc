@@ -112,6 +112,7 @@ struct RunOptions {
   int workers_per_run = 0;  // 0: cores / parallel
   int port_base = 7700;
   std::string from_export;
+  std::vector<std::string> only;  // configurations to run now; empty: all
 };
 
 struct Running {
@@ -167,15 +168,21 @@ int RunStudy(const at::StudyDir& study, RunOptions options) {
     std::printf("from the export %s: %zu complete runs taken\n", options.from_export.c_str(),
                 taken.size());
     for (const auto& name : skipped)
-      std::printf("  %s: not taken, its configuration differs from this study's\n", name.c_str());
+      std::printf("  %s: not taken, its configuration or physics differs from this study's\n",
+                  name.c_str());
   }
   std::vector<at::StudyRun> queue;
   int complete = 0;
   const auto runs = study.Runs();
+  for (const auto& name : options.only)
+    if (std::none_of(study.plan().configs.begin(), study.plan().configs.end(),
+                     [&](const at::StudyConfig& c) { return c.name == name; }))
+      throw at::StudyPlanError("--only " + name + ": the study has no such configuration");
   for (const auto& run : runs) {
     if (study.State(run).kind == at::RunStateKind::kComplete)
       ++complete;
-    else
+    else if (options.only.empty() ||
+             std::find(options.only.begin(), options.only.end(), run.config) != options.only.end())
       queue.push_back(run);
   }
   std::printf(
@@ -262,6 +269,13 @@ int RunStudy(const at::StudyDir& study, RunOptions options) {
                 failed, ahhs::arena::ExecutableDir().c_str(), study.dir().c_str());
     return kExitFailure;
   }
+  if (complete < static_cast<int>(runs.size())) {
+    std::printf(
+        "the chosen configurations are complete; %zu runs of the others wait (run "
+        "--resume without --only)\n",
+        runs.size() - static_cast<std::size_t>(complete));
+    return 0;
+  }
   std::printf("study complete: %zu runs in %s\n", runs.size(), study.dir().c_str());
   return 0;
 }
@@ -343,6 +357,9 @@ int main(int argc, char** argv) {
                   "run i of the plan uses LCM port BASE + i (ttl=0), so runs never share workers")
       ->check(CLI::Range(1024, 60000))
       ->capture_default_str();
+  run->add_option("--only", options.only,
+                  "run only these configurations now (comma-separated names); the others wait")
+      ->delimiter(',');
   run->add_option("--from-export", options.from_export,
                   "take the complete runs of this export (ahhs-study export) instead of running "
                   "them again");

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "evolver/store/run_store.h"
+#include "sim/core/constants.h"
 
 namespace ahhs::tools {
 
@@ -214,7 +215,8 @@ void StudyDir::WriteSummary(const StudyRun& run) const {
                  {"best_index", best.index},
                  {"best_eval_seed", best.eval_seed},
                  {"final_best", records.back().stats.best},
-                 {"wall_time_s", wall_time}};
+                 {"wall_time_s", wall_time},
+                 {"physics", sim::kPhysicsVersion}};
     store->Export();  // the database is the truth: its exports are whole before they are copied
     WriteFile(fs::path(run_dir) / kSummaryFile, summary.dump(2) + "\n");
   } catch (const evolver::RunStoreError& e) {
@@ -263,7 +265,8 @@ std::vector<std::string> StudyDir::Import(const std::string& src,
     const auto summary = ReadSummary(from);
     if (!summary) continue;
     if (ReadSummary(RunDir(run))) continue;  // complete here already
-    if (summary->value("evolve_config", json()) != EvolveConfig(run)) {
+    if (summary->value("evolve_config", json()) != EvolveConfig(run) ||
+        summary->value("physics", "") != sim::kPhysicsVersion) {
       if (skipped) skipped->push_back(run.Name());
       continue;
     }

@@ -69,9 +69,10 @@ class StudyDir {
   // Returns the number of runs in the export.
   int Export(const std::string& dest) const;
 
-  // Takes the runs that the export `src` holds complete, with this study's configuration, and
-  // that are not complete here. Returns the names of the runs taken; a partial run here is
-  // replaced. Runs of `src` whose configuration differs are reported in `skipped`.
+  // Takes the runs that the export `src` holds complete, with this study's configuration and
+  // this build's physics (sim::kPhysicsVersion), and that are not complete here. Returns the names
+  // of the runs taken; a partial run here is replaced. Runs of `src` whose configuration differs
+  // are reported in `skipped`.
   std::vector<std::string> Import(const std::string& src, std::vector<std::string>* skipped) const;
 
  private:

@@ -33,6 +33,8 @@ std::string CheckConfig(const ScenarioConfig& c) {
   if (!std::isfinite(c.duration) || c.duration < 0)
     return "duration: must be a positive number of seconds";
   if (c.duration > 1e5) return "duration: more than 100000 s";
+  if (!std::isfinite(c.physics_step) || c.physics_step < 0 || c.physics_step > 0.05)
+    return "physics step: 0 (the task's) or up to 0.05 s";
   return "";
 }
 
@@ -68,8 +70,14 @@ ScenarioConfig MakeScenarioConfig(ScenarioKind kind, Joints joints, int modules,
 std::unique_ptr<Scenario> MakeScenario(const ScenarioConfig& config) {
   const std::string error = CheckConfig(config);
   if (!error.empty()) throw std::invalid_argument(error);
-  if (config.kind == ScenarioKind::kPendulum) return std::make_unique<PendulumScenario>(config);
-  return std::make_unique<GaitScenario>(config);
+  if (config.kind == ScenarioKind::kPendulum) {
+    PendulumConstants k;
+    if (config.physics_step > 0) k.integration_step = config.physics_step;
+    return std::make_unique<PendulumScenario>(config, k);
+  }
+  GaitConstants k;
+  if (config.physics_step > 0) k.physics_step = config.physics_step;
+  return std::make_unique<GaitScenario>(config, k);
 }
 
 }  // namespace ahhs::sim

@@ -21,6 +21,10 @@ struct ScenarioConfig {
   int num_modules = 5;              // gait: modules in the chain (>= 2); pendulum: always 2
   Joints joints = Joints::kDamped;  // gait docking variant
   double duration = 0;              // simulated seconds; 0 = the task's default (60 s / 3000 ticks)
+  // A check, not a task setting: the physics step (gait, ODE) or RK4 step (pendulum) in seconds;
+  // 0 = the task's (docs/scenarios.md). Never on the wire: only a direct replay sets it, to see
+  // whether a behaviour depends on the discretisation.
+  double physics_step = 0;
 };
 
 // Parses "gait"/"pendulum" and "damped"/"fixed"; throw std::invalid_argument otherwise.

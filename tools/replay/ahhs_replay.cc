@@ -97,6 +97,11 @@ int main(int argc, char** argv) {
   app.add_option("--log", log_file, "write the episode as an LCM log");
   app.add_option("--csv", csv_file, "write the per-tick trace as CSV");
   std::string body_csv;
+  double physics_step = 0;
+  app.add_option("--physics-step", physics_step,
+                 "seconds per physics step (gait) or RK4 step (pendulum) instead of the task's: "
+                 "does the behaviour depend on the discretisation? (docs/scenarios.md)")
+      ->check(CLI::Range(0.0001, 0.05));
   app.add_option("--body-csv", body_csv,
                  "write the organism per tick as CSV (pendulum: cart_x, pole_angle in rad; gait: "
                  "centroid_x, centroid_y in m)");
@@ -175,6 +180,7 @@ int main(int argc, char** argv) {
           stored_fitness = meta["fitness"].get<double>();
       }
     }
+    spec.config.physics_step = physics_step;
     if (!mutation_profile.empty()) mutation.profile = am::ParseMutationProfile(mutation_profile);
   } catch (const std::exception& e) {
     std::cerr << "ahhs-replay: " << e.what() << '\n';
@@ -225,6 +231,9 @@ int main(int argc, char** argv) {
     if (stored_fitness) {
       if (*stored_fitness == fitness) {
         std::printf("stored fitness %s: reproduced exactly\n", Exact(*stored_fitness).c_str());
+      } else if (physics_step > 0) {
+        std::printf("stored fitness %s: at a physics step of %g s the replay differs by %.3g\n",
+                    Exact(*stored_fitness).c_str(), physics_step, fitness - *stored_fitness);
       } else {
         std::printf(
             "stored fitness %s: the replay differs by %.3g (the run was evaluated by a build "

@@ -68,6 +68,11 @@ sed 's/^duration = 20.0$/duration = "long"/' $tmp/plan.toml >$tmp/bad.toml; bad 
 "$S" run --resume $tmp/nothing >$tmp/out 2>&1; [[ $? == 2 ]] || fail "resume of nothing: $(cat $tmp/out)"
 grep -q "is not a study directory" $tmp/out || fail "resume of nothing: $(cat $tmp/out)"
 "$S" run $tmp/plan.toml >$tmp/out 2>&1; [[ $? == 2 ]] || fail "no --out: $(cat $tmp/out)"
+# A study whose creation was killed (configs/ but no plan yet): --resume says to start it again,
+# and starting it again works.
+mkdir -p $tmp/U/configs && echo x >$tmp/U/configs/pend2.toml
+"$S" run --resume $tmp/U >$tmp/out 2>&1; [[ $? == 2 ]] && grep -q "creation was interrupted" $tmp/out || fail "unfinished: $(cat $tmp/out)"
+"$S" run $tmp/plan.toml --out $tmp/U --only pend1 $opts >$tmp/out 2>&1 || fail "restart of an unfinished study: $(cat $tmp/out)"
 
 echo "== 2. a whole study"
 "$S" run $tmp/plan.toml --out $tmp/A $opts >$tmp/A.out 2>&1 || { cat $tmp/A.out; fail "study A"; }
@@ -88,8 +93,15 @@ for k in 1 2 3; do
   pid=$!
   sleep "$((RANDOM % 3)).$((RANDOM % 10))"
   kill -9 $pid; wait $pid 2>/dev/null
-  # The runs it started end themselves (their owner is gone); the resume waits for them.
-  "$S" run --resume $tmp/B $opts >$tmp/B2.out 2>&1 || { cat $tmp/B2.out; fail "resume after kill -9 #$k"; }
+  # The runs it started end themselves (their owner is gone); the resume waits for them. Killed
+  # while it was still making the study, there is nothing to resume: it is started again.
+  if [[ -e $tmp/B/study.toml ]]; then
+    "$S" run --resume $tmp/B $opts >$tmp/B2.out 2>&1 || { cat $tmp/B2.out; fail "resume after kill -9 #$k"; }
+  else
+    "$S" run --resume $tmp/B $opts >$tmp/B2.out 2>&1; [[ $? == 2 ]] && grep -q "creation was interrupted" $tmp/B2.out ||
+      [[ ! -e $tmp/B ]] || fail "resume of an interrupted creation: $(cat $tmp/B2.out)"
+    "$S" run $tmp/plan.toml --out $tmp/B $opts >$tmp/B2.out 2>&1 || { cat $tmp/B2.out; fail "restart after kill -9 #$k"; }
+  fi
   same_study $tmp/A $tmp/B "kill -9 #$k ($(grep -c '^\[.*complete' $tmp/B.out) runs had completed)"
 done
 rm -rf $tmp/B

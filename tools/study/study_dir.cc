@@ -48,6 +48,18 @@ void WriteFile(const fs::path& path, const std::string& text) {
 
 void CopyFile(const fs::path& from, const fs::path& to) { WriteFile(to, ReadFile(from)); }
 
+// A study directory whose creation was killed: only configs/ (the plan, written last, is missing).
+bool Unfinished(const std::string& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec) || fs::exists(fs::path(dir) / kPlanFile, ec)) return false;
+  bool any = false;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    if (entry.path().filename() != "configs") return false;
+    any = true;
+  }
+  return any;
+}
+
 std::optional<json> ReadSummary(const fs::path& run_dir) {
   std::error_code ec;
   const fs::path path = run_dir / kSummaryFile;
@@ -106,6 +118,7 @@ StudyDir::StudyDir(std::string dir, StudyPlan plan, std::string plan_text)
 StudyDir StudyDir::Create(const std::string& dir, const std::string& plan_path,
                           const StudyPlan& plan, const Resolver& resolve) {
   std::error_code ec;
+  if (Unfinished(dir)) fs::remove_all(dir, ec);  // a creation killed before its plan was written
   if (fs::exists(dir, ec) && !(fs::is_directory(dir, ec) && fs::is_empty(dir, ec)))
     throw StudyPlanError(dir +
                          " already holds files; continue that study with ahhs-study run "
@@ -137,6 +150,11 @@ StudyDir StudyDir::Create(const std::string& dir, const std::string& plan_path,
 StudyDir StudyDir::Open(const std::string& dir) {
   std::error_code ec;
   const fs::path plan_path = fs::path(dir) / kPlanFile;
+  if (Unfinished(dir))
+    throw StudyPlanError(dir +
+                         " is a study whose creation was interrupted (no runs yet); start it "
+                         "again: ahhs-study run PLAN --out " +
+                         dir);
   if (!fs::is_regular_file(plan_path, ec))
     throw StudyPlanError(dir + " is not a study directory (no " + kPlanFile + ")");
   const std::string text = ReadFile(plan_path);

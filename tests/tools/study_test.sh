@@ -142,6 +142,10 @@ best=$(python3 -c "import json;print(repr(json.load(open('$tmp/E/pend1/seed-1/su
 "$bin/ahhs-replay" --genome $tmp/E/pend1/seed-1/best.json --scenario pendulum --duration 20 >$tmp/out 2>&1 ||
   fail "replay of an exported best: $(cat $tmp/out)"
 grep -q "reproduced exactly" $tmp/out || fail "exported best does not reproduce ($best): $(cat $tmp/out)"
+# ahhs-report reads exported runs (no database), and their best genomes replay exactly.
+"$bin/ahhs-report" $tmp/E/pend1/seed-1 $tmp/E/pend1/seed-2 $tmp/E/pend2/seed-1 -o $tmp/R >$tmp/out 2>&1 ||
+  fail "report of an export: $(cat $tmp/out)"
+grep -q "reproduced exactly" $tmp/R/summary.md && [[ -s $tmp/R/box_best.png ]] || fail "report of an export: $(cat $tmp/R/summary.md)"
 # A plan that changed a configuration: its exported runs are not taken.
 sed 's/^rules = 20$/rules = 21/' $tmp/plan.toml >$tmp/plan2.toml
 "$S" run $tmp/plan2.toml --out $tmp/D $opts --from-export $tmp/E >$tmp/D.out 2>&1 || fail "study D: $(cat $tmp/D.out)"

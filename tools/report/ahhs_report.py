@@ -46,6 +46,11 @@ class Run:
         if not os.path.isdir(path):
             raise ReportError(f"{path} is not a directory")
         db = os.path.join(path, "run.sqlite")
+        summary = os.path.join(path, "summary.json")
+        self.exported = not os.path.isfile(db) and os.path.isfile(summary)
+        if self.exported:  # a run of a study export: summary.json, generations.csv, best.json
+            self._load_export(summary)
+            return
         if not os.path.isfile(db):
             raise ReportError(f"{path} is not a run directory (no run.sqlite)")
         try:
@@ -71,6 +76,35 @@ class Run:
         self.best = np.array([r[1] for r in rows])
         self.mean = np.array([r[2] for r in rows])
         self.median = np.array([r[3] for r in rows])
+
+    def _load_export(self, summary):
+        try:
+            with open(summary) as f:
+                meta = json.load(f)
+            if meta.get("format") != "ahhs-study-run":
+                raise ReportError(f"{self.path}: summary.json is not an ahhs-study run summary")
+            self.config = meta["evolve_config"]
+            self.run_id = meta.get("run_id", "")
+            rows = np.atleast_1d(np.genfromtxt(os.path.join(self.path, "generations.csv"),
+                                               delimiter=",", names=True))
+        except (OSError, ValueError, KeyError) as e:
+            raise ReportError(f"{self.path}: not a readable exported run ({e})")
+        if len(rows) == 0:
+            raise ReportError(f"{self.path}: the exported run has no generation")
+        self.generation = rows["generation"].astype(int)
+        self.best = rows["best"]
+        self.mean = rows["mean"]
+        self.median = rows["median"]
+
+    def replay_argv(self):
+        """ahhs-replay's arguments for this run's best genome (a run directory, or an exported
+        best.json with its configuration)."""
+        if not self.exported:
+            return [self.path]
+        c = self.config
+        return ["--genome", os.path.join(self.path, "best.json"), "--scenario", c["scenario"],
+                "--joints", c["joints"], "--modules", str(c["modules"]),
+                "--duration", repr(float(c["duration"]))]
 
     @property
     def task(self):
@@ -491,7 +525,8 @@ def report_runs(args):
         rules = os.path.join(args.out, "replay-rules.csv")
         log = os.path.join(args.out, "replay.lcm")
         body = os.path.join(args.out, "replay-body.csv")
-        out = run_replay(bin_dir, [first.path, "--csv", trace, "--rules-csv", rules, "--log", log,
+        out = run_replay(bin_dir, first.replay_argv() + ["--csv", trace, "--rules-csv", rules,
+                                                         "--log", log,
                                    "--body-csv", body])
         written += [trace, rules, log, body]
         info = replay_figures(trace, rules, body, first.task, args.out, written)
@@ -591,7 +626,8 @@ def main(argv):
         return 0
     p = argparse.ArgumentParser(prog="ahhs-report",
                                 description="figures and a summary for ahhs-evolve runs")
-    p.add_argument("runs", nargs="+", help="run directories")
+    p.add_argument("runs", nargs="+",
+                   help="run directories, or runs of a study export (ahhs-study export)")
     p.add_argument("-o", "--out", required=True, help="output directory")
     p.add_argument("--overwrite", action="store_true", help="replace a report in --out")
     p.add_argument("--no-replay", action="store_true",

@@ -30,4 +30,5 @@ usage_error "unknown key 'populaton' in the config file (did you mean population
 "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" --help >$tmp/out 2>&1 || fail "ahhs-netns --help exits $?"
 grep -q "^usage: ahhs-netns COMMAND" $tmp/out || fail "ahhs-netns --help: $(cat $tmp/out)"
 "$bin/ahhs-report" --frobnicate >/dev/null 2>&1; [[ $? == 2 ]] || fail "ahhs-report --frobnicate"
+"$bin/ahhs-report" --help | grep -q "ahhs-report neighbourhood" || fail "ahhs-report --help does not name neighbourhood"
 echo PASS

@@ -624,8 +624,10 @@ def main(argv):
         args = p.parse_args(argv[1:])
         report_neighbourhood(args)
         return 0
-    p = argparse.ArgumentParser(prog="ahhs-report",
-                                description="figures and a summary for ahhs-evolve runs")
+    p = argparse.ArgumentParser(
+        prog="ahhs-report", description="figures and a summary for ahhs-evolve runs",
+        epilog="also: ahhs-report neighbourhood GENOME_OR_RUN_DIR -o DIR [--mutants N]: the "
+               "mutation neighbourhood of a genome (ahhs-report neighbourhood --help)")
     p.add_argument("runs", nargs="+",
                    help="run directories, or runs of a study export (ahhs-study export)")
     p.add_argument("-o", "--out", required=True, help="output directory")

@@ -10,6 +10,7 @@
 
 #include "bus/channels.h"
 #include "bus/codec.h"
+#include "evolver/store/atomic_file.h"
 #include "modules/node/trace_codec.h"
 #include "sim/core/gait.h"
 #include "sim/core/pendulum.h"
@@ -57,32 +58,7 @@ class LogWriter {
   std::int64_t events_ = 0;
 };
 
-// A text file written to a temporary name and moved into place when complete.
-class TextWriter {
- public:
-  explicit TextWriter(const std::string& path) : path_(path), out_(path + ".tmp") {
-    if (!out_) throw std::runtime_error("cannot write " + path);
-  }
-  std::ofstream& out() { return out_; }
-  void Commit() {
-    out_.close();
-    if (!out_) throw std::runtime_error("cannot write " + path_);
-    fs::rename(path_ + ".tmp", path_);
-    done_ = true;
-  }
-  ~TextWriter() {
-    if (!done_) {
-      out_.close();
-      std::error_code ignored;
-      fs::remove(path_ + ".tmp", ignored);
-    }
-  }
-
- private:
-  std::string path_;
-  std::ofstream out_;
-  bool done_ = false;
-};
+using TextWriter = evolver::AtomicTextFile;
 
 std::string Exact(double v) {
   char buf[40];

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "evolver/store/atomic_file.h"
 #include "modules/core/genome_json.h"
 
 namespace ahhs::evolver {
@@ -107,22 +108,13 @@ std::int64_t NowUtime() {
 std::int64_t ToSql(std::uint64_t v) { return static_cast<std::int64_t>(v); }
 std::uint64_t FromSql(std::int64_t v) { return static_cast<std::uint64_t>(v); }
 
-// Writes a text file atomically: a reader sees the old file or the new one, never half of one.
-void WriteFileAtomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(tmp, ignored);
-      throw RunStoreError("cannot write " + path.string());
-    }
+// The exports, written whole or not at all (atomic_file.h), with the store's error type.
+void WriteExport(const fs::path& path, const std::string& text) {
+  try {
+    WriteFileAtomically(path.string(), text);
+  } catch (const std::runtime_error& e) {
+    throw RunStoreError(e.what());
   }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw RunStoreError("cannot write " + path.string() + ": " + ec.message());
 }
 
 std::string FormatDouble(double v) {
@@ -424,7 +416,7 @@ void RunStore::Export() const {
     csv << g.generation << ',' << FormatDouble(g.stats.best) << ',' << FormatDouble(g.stats.mean)
         << ',' << FormatDouble(g.stats.median) << ',' << FormatDouble(g.stats.worst) << ','
         << g.stats.best_index << ',' << FormatDouble(g.wall_time) << '\n';
-  WriteFileAtomically(root / "generations.csv", csv.str());
+  WriteExport(root / "generations.csv", csv.str());
   std::error_code ec;
   fs::create_directories(root / "best", ec);
   auto meta = [&](const IndividualRecord& r) {

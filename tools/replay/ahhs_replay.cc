@@ -20,6 +20,7 @@
 #include "evolver/arena/episode.h"
 #include "evolver/arena/episode_recorder.h"
 #include "evolver/evolve/evolution.h"
+#include "evolver/store/atomic_file.h"
 #include "evolver/store/run_store.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/random.h"
@@ -33,32 +34,7 @@ namespace ev = ahhs::evolver;
 
 namespace {
 
-// A text file written to a temporary name and moved into place when complete.
-class TextWriter {
- public:
-  explicit TextWriter(const std::string& path) : path_(path), out_(path + ".tmp") {
-    if (!out_) throw std::runtime_error("cannot write " + path);
-  }
-  std::ofstream& out() { return out_; }
-  void Commit() {
-    out_.close();
-    if (!out_) throw std::runtime_error("cannot write " + path_);
-    fs::rename(path_ + ".tmp", path_);
-    done_ = true;
-  }
-  ~TextWriter() {
-    if (!done_) {
-      out_.close();
-      std::error_code ignored;
-      fs::remove(path_ + ".tmp", ignored);
-    }
-  }
-
- private:
-  std::string path_;
-  std::ofstream out_;
-  bool done_ = false;
-};
+using TextWriter = ev::AtomicTextFile;
 
 std::string Exact(double v) {
   char buf[40];

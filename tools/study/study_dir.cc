@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "evolver/store/atomic_file.h"
 #include "evolver/store/run_store.h"
 #include "sim/core/constants.h"
 
@@ -28,22 +29,15 @@ std::string ReadFile(const fs::path& path) {
   return text.str();
 }
 
-// A reader sees the old file or the new one, never half of one.
+// Whole or not at all (evolver/store/atomic_file.h), in a folder made as needed.
 void WriteFile(const fs::path& path, const std::string& text) {
   std::error_code ec;
   fs::create_directories(path.parent_path(), ec);
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      fs::remove(tmp, ec);
-      throw StudyPlanError("cannot write " + path.string());
-    }
+  try {
+    evolver::WriteFileAtomically(path.string(), text);
+  } catch (const std::runtime_error& e) {
+    throw StudyPlanError(e.what());
   }
-  fs::rename(tmp, path, ec);
-  if (ec) throw StudyPlanError("cannot write " + path.string() + ": " + ec.message());
 }
 
 void CopyFile(const fs::path& from, const fs::path& to) { WriteFile(to, ReadFile(from)); }

@@ -1,0 +1,39 @@
+#include "evolver/store/atomic_file.h"
+
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+namespace ahhs::evolver {
+
+namespace fs = std::filesystem;
+
+AtomicTextFile::AtomicTextFile(std::string path)
+    : path_(std::move(path)), out_(path_ + ".tmp", std::ios::binary | std::ios::trunc) {
+  if (!out_) throw std::runtime_error("cannot write " + path_);
+}
+
+AtomicTextFile::~AtomicTextFile() {
+  if (done_) return;
+  out_.close();
+  std::error_code ignored;
+  fs::remove(path_ + ".tmp", ignored);
+}
+
+void AtomicTextFile::Commit() {
+  out_.flush();
+  out_.close();
+  if (!out_) throw std::runtime_error("cannot write " + path_);
+  std::error_code ec;
+  fs::rename(path_ + ".tmp", path_, ec);
+  if (ec) throw std::runtime_error("cannot write " + path_ + ": " + ec.message());
+  done_ = true;
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& text) {
+  AtomicTextFile file(path);
+  file.out() << text;
+  file.Commit();
+}
+
+}  // namespace ahhs::evolver

@@ -211,6 +211,18 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
     store = ev::RunStore::Open(o.resume_dir,
                                o.show_config ? ev::StoreAccess::kRead : ev::StoreAccess::kWrite);
     *config = ev::ConfigFromJson(store->config());
+    const std::string physics =
+        ahhs::sim::PhysicsVersion(config->scenario.kind, config->scenario.joints);
+    if (!store->physics().empty() && store->physics() != physics)
+      throw std::invalid_argument(o.resume_dir + " was made with the " +
+                                  ahhs::sim::ScenarioName(config->scenario.kind) + " physics of " +
+                                  store->physics() + ", this build has " + physics +
+                                  " (CHANGELOG.md): its fitnesses would mix two physics; start a "
+                                  "new run");
+    if (store->physics().empty() && !o.show_config)
+      std::cerr << "ahhs-evolve: note: " << o.resume_dir
+                << " does not record its physics (made before 2026-12-01); resuming with "
+                << physics << '\n';
     if (o.show_config) {
       std::cout << ev::ConfigToJson(*config).dump(2) << '\n';
       return nullptr;
@@ -247,8 +259,9 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
     }
     const std::string run_id =
         HostName() + "-" + std::to_string(getpid()) + "-" + std::to_string(std::time(nullptr));
-    store = ev::RunStore::Create(o.out_dir, run_id, config->seed, ev::ConfigToJson(*config),
-                                 o.overwrite);
+    store = ev::RunStore::Create(
+        o.out_dir, run_id, config->seed, ev::ConfigToJson(*config),
+        ahhs::sim::PhysicsVersion(config->scenario.kind, config->scenario.joints), o.overwrite);
   }
   return store;
 }

@@ -164,7 +164,7 @@ void RunStore::Exec(const char* sql) const {
 
 std::unique_ptr<RunStore> RunStore::Create(const std::string& dir, const std::string& run_id,
                                            std::uint64_t run_seed, const json& config,
-                                           bool overwrite) {
+                                           const std::string& physics, bool overwrite) {
   const fs::path root(dir);
   std::error_code ec;
   if (fs::exists(root, ec)) {
@@ -216,6 +216,7 @@ std::unique_ptr<RunStore> RunStore::Create(const std::string& dir, const std::st
     put.Bind(1, std::string("run_id")).Bind(2, run_id).Run();
     put.Bind(1, std::string("seed")).Bind(2, std::to_string(run_seed)).Run();
     put.Bind(1, std::string("config")).Bind(2, config.dump()).Run();
+    put.Bind(1, std::string("physics")).Bind(2, physics).Run();
     put.Bind(1, std::string("created_utime")).Bind(2, std::to_string(NowUtime())).Run();
     store->Exec("COMMIT");
   }
@@ -262,6 +263,7 @@ void RunStore::LoadRunTable() {
                         " is not supported (this build reads version " +
                         std::to_string(kFormatVersion) + ")");
   run_id_ = values.value("run_id", "");
+  physics_ = values.value("physics", "");
   try {
     run_seed_ = std::stoull(values.value("seed", ""));
     config_ = json::parse(values.value("config", ""));

@@ -57,11 +57,12 @@ class RunStore {
   static constexpr int kFormatVersion = 1;
 
   // Makes a new run directory. Refuses an existing non-empty directory unless `overwrite`, in
-  // which case the old run's files are removed first. `config` is stored verbatim. Refuses a
-  // directory that another process is writing.
+  // which case the old run's files are removed first. `config` and `physics` (the version of
+  // the physics its fitnesses are measured with, sim::PhysicsVersion) are stored verbatim.
+  // Refuses a directory that another process is writing.
   static std::unique_ptr<RunStore> Create(const std::string& dir, const std::string& run_id,
                                           std::uint64_t run_seed, const nlohmann::json& config,
-                                          bool overwrite);
+                                          const std::string& physics, bool overwrite);
   // Opens an existing run (kWrite to resume it, kRead to read it). Checks that it is a run
   // directory of this format and that its database is intact; kWrite refuses a directory that
   // another process is writing.
@@ -77,6 +78,8 @@ class RunStore {
   const std::string& run_id() const { return run_id_; }
   std::uint64_t run_seed() const { return run_seed_; }
   const nlohmann::json& config() const { return config_; }
+  // The physics version stored by Create; "" for runs made before it was stored (2026-12-01).
+  const std::string& physics() const { return physics_; }
 
   // Records a new session (the first start or a resume) and returns its number (1, 2, ...).
   int BeginSession(const std::string& command_line);
@@ -110,6 +113,7 @@ class RunStore {
   std::string run_id_;
   std::uint64_t run_seed_ = 0;
   nlohmann::json config_;
+  std::string physics_;
 };
 
 }  // namespace ahhs::evolver

@@ -6,10 +6,13 @@
 
 namespace ahhs::sim {
 
-// The physics a fitness was measured with. Bump it with every change that changes any fitness
-// (constants, solver, sensors): a study takes an exported run only when it was made with the
-// same physics (tools/study), since the run store cannot tell otherwise.
-inline constexpr const char* kPhysicsVersion = "2026-12-01";
+// The physics a fitness was measured with, per task (sim::PhysicsVersion picks one). Bump one
+// with every change that changes a fitness of that task (constants, solver, sensors): a study
+// takes an exported run only when it was made with the same physics (tools/study), since the
+// run store cannot tell otherwise. CHANGELOG.md says what each change was.
+inline constexpr const char* kPendulumPhysicsVersion = "2026-12-01";
+inline constexpr const char* kGaitFixedPhysicsVersion = "2026-12-01";
+inline constexpr const char* kGaitDampedPhysicsVersion = "2026-12-01.2";
 
 struct PendulumConstants {
   // s per controller tick. The paper's slow sampling: a pendulum that keeps turning passes the
@@ -35,7 +38,11 @@ struct PendulumConstants {
 
 struct GaitConstants {
   double control_period = 0.05;  // s per controller tick (20 Hz)
-  double physics_step = 0.0125;  // s per physics step: 4 steps per control tick
+  // s per physics step. Fixed docking: 4 steps per control tick. Damped docking: 8, because
+  // its docking springs ring at about 20-30 Hz, which 4 steps per tick do not resolve: evolved
+  // damped gaits then behaved differently at finer steps (docs/scenarios.md, "Physics step").
+  double physics_step_fixed = 0.0125;
+  double physics_step_damped = 0.00625;
   // The solver. ODE's exact (Dantzig LCP) dWorldStep: with the iterative dWorldQuickStep the
   // under-converged contact and servo forces made a chain under constant commands chatter and
   // creep (up to 0.9 m in 55 s); docs/scenarios.md has the measurements. The quick-step settings
@@ -45,19 +52,19 @@ struct GaitConstants {
   // Successive over-relaxation of the quick-step solver (dWorldSetQuickStepW).
   double solver_relaxation_fixed = 1.3;
   double solver_relaxation_damped = 1.5;
-  // Resting: an organism whose every body moves slower than these for rest_steps physics steps
+  // Resting: an organism whose every body moves slower than these for rest_time
   // is put to rest (ODE's auto-disable) until a hinge target changes. A resting chain cannot
-  // creep by contact micro-events (docs/scenarios.md). 0 steps: never rest.
+  // creep by contact micro-events (docs/scenarios.md). 0 s: never rest.
   double rest_linear_speed = 0.01;   // m/s
   double rest_angular_speed = 0.01;  // rad/s
-  int rest_steps = 10;
-  double duration = 60.0;         // s per episode
-  double gravity = 9.81;          // m/s^2
-  double module_size = 0.1;       // m, a module is a cube of this edge, two halves along x
-  double module_mass = 0.5;       // kg (0.25 kg per half)
-  double hinge_range = M_PI / 2;  // rad, main hinge limits +-90 degrees; target = range * A
-  double servo_gain = 10.0;       // 1/s, commanded hinge speed = gain * angle error
-  double servo_max_speed = 3.0;   // rad/s
+  double rest_time = 0.125;          // s (10 physics steps of fixed docking)
+  double duration = 60.0;            // s per episode
+  double gravity = 9.81;             // m/s^2
+  double module_size = 0.1;          // m, a module is a cube of this edge, two halves along x
+  double module_mass = 0.5;          // kg (0.25 kg per half)
+  double hinge_range = M_PI / 2;     // rad, main hinge limits +-90 degrees; target = range * A
+  double servo_gain = 10.0;          // 1/s, commanded hinge speed = gain * angle error
+  double servo_max_speed = 3.0;      // rad/s
   // N m. Holding the module's own half plus two modules straight out needs 1.53 N m, plus three
   // modules 3.0 N m: 2.2 N m lifts two neighbours, not three.
   double servo_max_torque = 2.2;

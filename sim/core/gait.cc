@@ -79,7 +79,10 @@ double GaitFitness(double displacement, const GaitConstants& k) {
 }
 
 GaitScenario::GaitScenario(const ScenarioConfig& config, GaitConstants constants)
-    : k_(constants), num_modules_(config.num_modules), joints_(config.joints) {
+    : k_(constants),
+      num_modules_(config.num_modules),
+      joints_(config.joints),
+      step_(joints_ == Joints::kDamped ? k_.physics_step_damped : k_.physics_step_fixed) {
   InitOdeOnce();
   total_ticks_ = EpisodeTicks(config.duration, k_.control_period,
                               EpisodeTicks(k_.duration, k_.control_period, 0));
@@ -120,11 +123,12 @@ void GaitScenario::Build() {
   dWorldSetQuickStepNumIterations(world_, k_.solver_iterations);
   dWorldSetQuickStepW(
       world_, joints_ == Joints::kFixed ? k_.solver_relaxation_fixed : k_.solver_relaxation_damped);
-  if (k_.rest_steps > 0) {
+  const int rest_steps = static_cast<int>(std::lround(k_.rest_time / step_));
+  if (rest_steps > 0) {
     dWorldSetAutoDisableFlag(world_, 1);
     dWorldSetAutoDisableLinearThreshold(world_, k_.rest_linear_speed);
     dWorldSetAutoDisableAngularThreshold(world_, k_.rest_angular_speed);
-    dWorldSetAutoDisableSteps(world_, k_.rest_steps);
+    dWorldSetAutoDisableSteps(world_, rest_steps);
     dWorldSetAutoDisableTime(world_, 0);
     dWorldSetAutoDisableAverageSamplesCount(world_, 1);
   }
@@ -223,7 +227,7 @@ void GaitScenario::Build() {
                    modules_[static_cast<std::size_t>(i + 1)].front.body);
       dJointSetFixed(dock);
       // Spring-damper as a soft constraint: ERP = hk / (hk + c), CFM = 1 / (hk + c).
-      const double hk = k_.physics_step * k_.dock_stiffness;
+      const double hk = step_ * k_.dock_stiffness;
       dJointSetFixedParam(dock, dParamERP, hk / (hk + k_.dock_damping));
       dJointSetFixedParam(dock, dParamCFM, 1.0 / (hk + k_.dock_damping));
       docks_.push_back(dock);
@@ -279,9 +283,9 @@ void GaitScenario::PhysicsStep() {
   }
   dSpaceCollide(space_, this, &GaitScenario::NearCallback);
   if (k_.iterative_solver)
-    dWorldQuickStep(world_, k_.physics_step);
+    dWorldQuickStep(world_, step_);
   else
-    dWorldStep(world_, k_.physics_step);
+    dWorldStep(world_, step_);
   dJointGroupEmpty(contacts_);
 }
 
@@ -303,7 +307,7 @@ bool GaitScenario::StateIsSane() const {
 StepStatus GaitScenario::Step(const SubstepObserver& observer) {
   if (!error_.empty()) return StepStatus::kFailed;
   if (tick_ >= total_ticks_) return StepStatus::kFinished;
-  const int substeps = static_cast<int>(std::lround(k_.control_period / k_.physics_step));
+  const int substeps = static_cast<int>(std::lround(k_.control_period / step_));
   // A blown-up simulation ends the episode with an error, never with a bogus fitness. The
   // state is checked after every physics step, before ODE could step on a non-finite value
   // (Debian's ODE aborts the process on some of those).

@@ -81,6 +81,7 @@ class GaitScenario final : public Scenario {
   GaitConstants k_;
   int num_modules_;
   Joints joints_;
+  double step_;  // s per physics step (by docking)
   std::int64_t total_ticks_;
   dWorldID world_ = nullptr;
   dSpaceID space_ = nullptr;

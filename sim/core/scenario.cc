@@ -25,6 +25,11 @@ const char* ScenarioName(ScenarioKind kind) {
 }
 const char* JointsName(Joints joints) { return joints == Joints::kDamped ? "damped" : "fixed"; }
 
+const char* PhysicsVersion(ScenarioKind kind, Joints joints) {
+  if (kind == ScenarioKind::kPendulum) return kPendulumPhysicsVersion;
+  return joints == Joints::kDamped ? kGaitDampedPhysicsVersion : kGaitFixedPhysicsVersion;
+}
+
 std::string CheckConfig(const ScenarioConfig& c) {
   if (c.kind != ScenarioKind::kGait && c.kind != ScenarioKind::kPendulum)
     return "scenario: unknown";
@@ -35,6 +40,8 @@ std::string CheckConfig(const ScenarioConfig& c) {
   if (c.duration > 1e5) return "duration: more than 100000 s";
   if (!std::isfinite(c.physics_step) || c.physics_step < 0 || c.physics_step > 0.05)
     return "physics step: 0 (the task's) or up to 0.05 s";
+  if (!std::isfinite(c.friction_scale) || c.friction_scale <= 0 || c.friction_scale > 10)
+    return "friction scale: above 0, at most 10";
   return "";
 }
 
@@ -73,10 +80,12 @@ std::unique_ptr<Scenario> MakeScenario(const ScenarioConfig& config) {
   if (config.kind == ScenarioKind::kPendulum) {
     PendulumConstants k;
     if (config.physics_step > 0) k.integration_step = config.physics_step;
+    k.pivot_friction *= config.friction_scale;
     return std::make_unique<PendulumScenario>(config, k);
   }
   GaitConstants k;
-  if (config.physics_step > 0) k.physics_step = config.physics_step;
+  if (config.physics_step > 0) k.physics_step_fixed = k.physics_step_damped = config.physics_step;
+  k.friction *= config.friction_scale;
   return std::make_unique<GaitScenario>(config, k);
 }
 

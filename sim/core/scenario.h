@@ -25,6 +25,10 @@ struct ScenarioConfig {
   // 0 = the task's (docs/scenarios.md). Never on the wire: only a direct replay sets it, to see
   // whether a behaviour depends on the discretisation.
   double physics_step = 0;
+  // A check, not a task setting: scales every Coulomb friction coefficient (gait) or the pivot
+  // friction (pendulum). Never on the wire: a replay perturbs the physics slightly with it to
+  // tell a robust behaviour from one that deterministic chaos happened to favour.
+  double friction_scale = 1;
 };
 
 // Parses "gait"/"pendulum" and "damped"/"fixed"; throw std::invalid_argument otherwise.
@@ -32,6 +36,9 @@ ScenarioKind ParseScenarioKind(const std::string& name);
 Joints ParseJoints(const std::string& name);
 const char* ScenarioName(ScenarioKind kind);
 const char* JointsName(Joints joints);
+
+// The physics version (sim/core/constants.h) a fitness of this configuration is measured with.
+const char* PhysicsVersion(ScenarioKind kind, Joints joints);
 
 // Checks a config; returns "" or a message naming the bad field.
 std::string CheckConfig(const ScenarioConfig& config);

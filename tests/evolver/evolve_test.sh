@@ -169,6 +169,18 @@ grep -q "already complete" $tmp/out || fail "complete run: $(cat $tmp/out)"
 cmp -s $tmp/gen.csv $tmp/p-direct-1/generations.csv || fail "generations.csv not rebuilt"
 [[ -s $tmp/p-direct-1/best/gen-0004.json && -s $tmp/p-direct-1/best.json ]] || fail "best files not rebuilt"
 echo "a complete run's missing exports are rebuilt by --resume"
+# A run records the physics its fitnesses were measured with; a resume in other physics is refused,
+# a run made before the physics was recorded resumes with a note.
+[[ $(sqlite3 $tmp/p-direct-1/run.sqlite "SELECT value FROM run WHERE key = 'physics'") == 2026-* ]] ||
+  fail "no physics recorded"
+cp -r $tmp/p-direct-1 $tmp/older
+sqlite3 $tmp/older/run.sqlite "UPDATE run SET value = '1999-01-01' WHERE key = 'physics'"
+$E --resume $tmp/older >$tmp/out 2>&1
+[[ $? == 1 ]] && grep -q "was made with the pendulum physics of 1999-01-01, this build has" $tmp/out ||
+  fail "other physics resumed: $(cat $tmp/out)"
+sqlite3 $tmp/older/run.sqlite "DELETE FROM run WHERE key = 'physics'"
+$E --resume $tmp/older >$tmp/out 2>&1 && grep -q "does not record its physics" $tmp/out ||
+  fail "run without physics: $(cat $tmp/out)"
 
 echo "== 5. runs are isolated"
 "$bin/ahhs-worker" --lcm-url "$url" --id stranger --run someone-else >$tmp/stranger.out 2>&1 &

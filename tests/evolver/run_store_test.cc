@@ -89,7 +89,8 @@ TEST_CASE("a committed generation comes back bit for bit, with its exports") {
   TempDir tmp;
   const std::string dir = tmp.path + "/run";
   const auto config = SmallConfig();
-  auto store = RunStore::Create(dir, "run-1", 123, evolver::ConfigToJson(config), false);
+  auto store =
+      RunStore::Create(dir, "run-1", 123, evolver::ConfigToJson(config), "test-physics", false);
   CHECK(store->LastGeneration() == -1);
   CHECK(store->BeginSession("test") == 1);
   HashFitness f;
@@ -107,6 +108,7 @@ TEST_CASE("a committed generation comes back bit for bit, with its exports") {
   const std::string before = DumpRun(*store);
   store.reset();
   auto reopened = RunStore::Open(dir);
+  CHECK(reopened->physics() == "test-physics");
   CHECK(reopened->run_id() == "run-1");
   CHECK(reopened->run_seed() == 123);
   CHECK(evolver::ConfigToJson(evolver::ConfigFromJson(reopened->config())) ==
@@ -139,15 +141,16 @@ TEST_CASE("a run stopped after any generation and resumed equals the uninterrupt
   TempDir tmp;
   const auto config = SmallConfig();
   HashFitness f;
-  auto whole =
-      RunStore::Create(tmp.path + "/whole", "w", 123, evolver::ConfigToJson(config), false);
+  auto whole = RunStore::Create(tmp.path + "/whole", "w", 123, evolver::ConfigToJson(config),
+                                "test-physics", false);
   evolver::RunEvolution(*whole, config, f, 1);
   const std::string expected = DumpRun(*whole);
 
   for (int stop_after : {0, 2, 4}) {
     const std::string dir = tmp.path + "/part" + std::to_string(stop_after);
     {
-      auto part = RunStore::Create(dir, "p", 123, evolver::ConfigToJson(config), false);
+      auto part =
+          RunStore::Create(dir, "p", 123, evolver::ConfigToJson(config), "test-physics", false);
       CHECK(part->BeginSession("start") == 1);
       evolver::EvolutionHooks hooks;
       int committed = 0;
@@ -167,18 +170,19 @@ TEST_CASE("an existing run directory is never overwritten unless asked") {
   TempDir tmp;
   const std::string dir = tmp.path + "/run";
   const auto json = evolver::ConfigToJson(SmallConfig());
-  RunStore::Create(dir, "a", 1, json, false);
+  RunStore::Create(dir, "a", 1, json, "test-physics", false);
   try {
-    RunStore::Create(dir, "b", 1, json, false);
+    RunStore::Create(dir, "b", 1, json, "test-physics", false);
     FAIL("no error");
   } catch (const RunStoreError& e) {
     CHECK_THAT(e.what(), Catch::Contains("--resume") && Catch::Contains("--overwrite"));
   }
   CHECK(RunStore::Open(dir)->run_id() == "a");
-  CHECK(RunStore::Create(dir, "b", 1, json, true)->run_id() == "b");
+  CHECK(RunStore::Create(dir, "b", 1, json, "test-physics", true)->run_id() == "b");
   // A file where the directory should be.
   std::ofstream(tmp.path + "/file") << "x";
-  CHECK_THROWS_AS(RunStore::Create(tmp.path + "/file", "c", 1, json, false), RunStoreError);
+  CHECK_THROWS_AS(RunStore::Create(tmp.path + "/file", "c", 1, json, "test-physics", false),
+                  RunStoreError);
 }
 
 TEST_CASE("a run directory has one writer at a time, and readers need no lock") {
@@ -186,7 +190,7 @@ TEST_CASE("a run directory has one writer at a time, and readers need no lock") 
   const std::string dir = tmp.path + "/run";
   const auto json = evolver::ConfigToJson(SmallConfig());
   {
-    auto writer = RunStore::Create(dir, "a", 1, json, false);
+    auto writer = RunStore::Create(dir, "a", 1, json, "test-physics", false);
     CHECK(RunStore::InUse(dir));
     try {
       RunStore::Open(dir);
@@ -194,7 +198,8 @@ TEST_CASE("a run directory has one writer at a time, and readers need no lock") 
     } catch (const RunStoreError& e) {
       CHECK_THAT(e.what(), Catch::Contains("is in use"));
     }
-    CHECK_THROWS_WITH(RunStore::Create(dir, "b", 1, json, true), Catch::Contains("is in use"));
+    CHECK_THROWS_WITH(RunStore::Create(dir, "b", 1, json, "test-physics", true),
+                      Catch::Contains("is in use"));
     CHECK(RunStore::Open(dir, evolver::StoreAccess::kRead)->run_id() == "a");
   }
   CHECK_FALSE(RunStore::InUse(dir));
@@ -220,7 +225,8 @@ TEST_CASE("opening something that is not an intact run gives a clear error") {
   // A real run whose database is then damaged in the middle.
   const std::string dir = tmp.path + "/damaged";
   {
-    auto store = RunStore::Create(dir, "d", 1, evolver::ConfigToJson(SmallConfig()), false);
+    auto store =
+        RunStore::Create(dir, "d", 1, evolver::ConfigToJson(SmallConfig()), "test-physics", false);
     HashFitness f;
     evolver::RunEvolution(*store, SmallConfig(), f, 1);
   }

@@ -187,7 +187,7 @@ TEST_CASE("gait: on open ground the wave goes as far as with a converged solver"
   // and 40 iterations take it. Under-converged, the damped chain's servo went limp and the
   // chain crawled (79 % with 5 steps x 14 iterations at ODE's default relaxation).
   GaitConstants converged;
-  converged.physics_step = converged.control_period / 20;
+  converged.physics_step_fixed = converged.physics_step_damped = converged.control_period / 20;
   converged.solver_iterations = 40;
   converged.solver_relaxation_fixed = converged.solver_relaxation_damped = 1.3;
   for (Joints j : {Joints::kDamped, Joints::kFixed}) {

@@ -152,7 +152,7 @@ sed 's/^rules = 20$/rules = 21/' $tmp/plan.toml >$tmp/plan2.toml
 grep -q "pend1/seed-1: not taken, its configuration or physics differs" $tmp/D.out || fail "changed config taken: $(cat $tmp/D.out)"
 
 # --only runs the named configurations now; the others wait. An exported run of other physics
-# (sim::kPhysicsVersion) is not taken.
+# (sim::PhysicsVersion) is not taken.
 "$S" run $tmp/plan.toml --out $tmp/F $opts --only pend1 >$tmp/F.out 2>&1 || fail "--only: $(cat $tmp/F.out)"
 [[ $(grep -c started $tmp/F.out) == 2 ]] && ! grep -q "started pend2" $tmp/F.out && grep -q "2 runs of the others wait" $tmp/F.out ||
   fail "--only: $(cat $tmp/F.out)"

@@ -19,6 +19,7 @@
 #include "evolver/arena/direct_arena.h"
 #include "evolver/arena/episode.h"
 #include "evolver/arena/episode_recorder.h"
+#include "evolver/arena/robustness.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/store/atomic_file.h"
 #include "evolver/store/run_store.h"
@@ -78,6 +79,18 @@ int main(int argc, char** argv) {
                  "seconds per physics step (gait) or RK4 step (pendulum) instead of the task's: "
                  "does the behaviour depend on the discretisation? (docs/scenarios.md)")
       ->check(CLI::Range(0.0001, 0.05));
+  double friction_scale = 1;
+  app.add_option("--friction-scale", friction_scale,
+                 "multiply the friction coefficients (gait) or pivot friction (pendulum) by this: "
+                 "a perturbed physics (docs/scenarios.md)")
+      ->check(CLI::Range(0.01, 10.0));
+  int robustness = 0;
+  std::string robustness_csv;
+  app.add_option("--robustness", robustness,
+                 "also replay N times with the friction scaled from 0.975 to 1.025 (not 1): is the "
+                 "fitness robust or a knife-edge of deterministic chaos? (docs/scenarios.md)")
+      ->check(CLI::Range(2, 1000));
+  app.add_option("--robustness-csv", robustness_csv, "where --robustness writes its results");
   app.add_option("--body-csv", body_csv,
                  "write the organism per tick as CSV (pendulum: cart_x, pole_angle in rad; gait: "
                  "centroid_x, centroid_y in m)");
@@ -104,7 +117,7 @@ int main(int argc, char** argv) {
     if (run_dir.empty() == genome_file.empty())
       throw std::invalid_argument("give either a run directory or --genome FILE");
     const std::string exists = ahhs::cli::RefuseExisting(
-        {log_file, csv_file, rules_csv, mutants_csv, body_csv}, overwrite);
+        {log_file, csv_file, rules_csv, mutants_csv, body_csv, robustness_csv}, overwrite);
     if (!exists.empty()) {
       std::cerr << "ahhs-replay: " << exists << '\n';
       return ahhs::cli::kExitUsage;
@@ -157,6 +170,9 @@ int main(int argc, char** argv) {
       }
     }
     spec.config.physics_step = physics_step;
+    spec.config.friction_scale = friction_scale;
+    if (!robustness_csv.empty() && robustness == 0)
+      throw std::invalid_argument("--robustness-csv needs --robustness N");
     if (!mutation_profile.empty()) mutation.profile = am::ParseMutationProfile(mutation_profile);
   } catch (const std::exception& e) {
     std::cerr << "ahhs-replay: " << e.what() << '\n';
@@ -196,6 +212,18 @@ int main(int argc, char** argv) {
       out.Commit();
       std::printf("%d single mutants evaluated into %s\n", mutants, mutants_csv.c_str());
     }
+    if (robustness > 0) {
+      const al::Robustness r = al::MeasureRobustness(spec, robustness);
+      if (!robustness_csv.empty()) {
+        TextWriter out(robustness_csv);
+        out.out() << "friction_scale,fitness\n";
+        for (std::size_t i = 0; i < r.scales.size(); ++i)
+          out.out() << Exact(r.scales[i]) << ','
+                    << (std::isnan(r.fitnesses[i]) ? "failed" : Exact(r.fitnesses[i])) << '\n';
+        out.Commit();
+      }
+      std::printf("%s\n", r.Describe(result.ok ? result.fitness : 0).c_str());
+    }
     std::printf("replayed %s with seed %llu\n", what.c_str(),
                 static_cast<unsigned long long>(spec.seed));
     if (!result.ok) {
@@ -207,9 +235,11 @@ int main(int argc, char** argv) {
     if (stored_fitness) {
       if (*stored_fitness == fitness) {
         std::printf("stored fitness %s: reproduced exactly\n", Exact(*stored_fitness).c_str());
-      } else if (physics_step > 0) {
-        std::printf("stored fitness %s: at a physics step of %g s the replay differs by %.3g\n",
-                    Exact(*stored_fitness).c_str(), physics_step, fitness - *stored_fitness);
+      } else if (physics_step > 0 || friction_scale != 1) {
+        std::printf(
+            "stored fitness %s: in the changed physics (--physics-step, --friction-scale) "
+            "the replay differs by %.3g\n",
+            Exact(*stored_fitness).c_str(), fitness - *stored_fitness);
       } else {
         std::printf(
             "stored fitness %s: the replay differs by %.3g (the run was evaluated by a build "

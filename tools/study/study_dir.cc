@@ -6,7 +6,7 @@
 
 #include "evolver/store/atomic_file.h"
 #include "evolver/store/run_store.h"
-#include "sim/core/constants.h"
+#include "sim/core/scenario.h"
 
 namespace ahhs::tools {
 
@@ -17,6 +17,12 @@ namespace {
 
 constexpr const char* kPlanFile = "study.toml";
 constexpr const char* kSummaryFile = "summary.json";
+
+// The physics version a run of this resolved ahhs-evolve configuration is measured with.
+std::string PhysicsOf(const json& evolve_config) {
+  return sim::PhysicsVersion(sim::ParseScenarioKind(evolve_config.value("scenario", "gait")),
+                             sim::ParseJoints(evolve_config.value("joints", "damped")));
+}
 constexpr const char* kSummaryFormat = "ahhs-study-run";
 // What an export keeps of a complete run.
 const char* const kExportedFiles[] = {"best.json", "generations.csv", kSummaryFile};
@@ -214,21 +220,22 @@ void StudyDir::WriteSummary(const StudyRun& run) const {
     double wall_time = 0;
     for (const auto& r : records) wall_time += r.wall_time;
     const evolver::IndividualRecord best = store->Best();
-    json summary{{"format", kSummaryFormat},
-                 {"format_version", 1},
-                 {"study", plan_.name},
-                 {"config", run.config},
-                 {"seed", run.seed},
-                 {"run_id", store->run_id()},
-                 {"evolve_config", store->config()},
-                 {"generations", generations},
-                 {"best_fitness", best.evaluation.fitness},
-                 {"best_generation", best.generation},
-                 {"best_index", best.index},
-                 {"best_eval_seed", best.eval_seed},
-                 {"final_best", records.back().stats.best},
-                 {"wall_time_s", wall_time},
-                 {"physics", sim::kPhysicsVersion}};
+    json summary{
+        {"format", kSummaryFormat},
+        {"format_version", 1},
+        {"study", plan_.name},
+        {"config", run.config},
+        {"seed", run.seed},
+        {"run_id", store->run_id()},
+        {"evolve_config", store->config()},
+        {"generations", generations},
+        {"best_fitness", best.evaluation.fitness},
+        {"best_generation", best.generation},
+        {"best_index", best.index},
+        {"best_eval_seed", best.eval_seed},
+        {"final_best", records.back().stats.best},
+        {"wall_time_s", wall_time},
+        {"physics", store->physics().empty() ? PhysicsOf(store->config()) : store->physics()}};
     store->Export();  // the database is the truth: its exports are whole before they are copied
     WriteFile(fs::path(run_dir) / kSummaryFile, summary.dump(2) + "\n");
   } catch (const evolver::RunStoreError& e) {
@@ -277,8 +284,9 @@ std::vector<std::string> StudyDir::Import(const std::string& src,
     const auto summary = ReadSummary(from);
     if (!summary) continue;
     if (ReadSummary(RunDir(run))) continue;  // complete here already
-    if (summary->value("evolve_config", json()) != EvolveConfig(run) ||
-        summary->value("physics", "") != sim::kPhysicsVersion) {
+    const json config = EvolveConfig(run);
+    if (summary->value("evolve_config", json()) != config ||
+        summary->value("physics", "") != PhysicsOf(config)) {
       if (skipped) skipped->push_back(run.Name());
       continue;
     }

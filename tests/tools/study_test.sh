@@ -6,7 +6,8 @@
 #     uninterrupted study's bit for bit; a second ahhs-study on the same directory is refused;
 #  4. export keeps best genome, generations and summary per run; a new study given the export
 #     runs only what the export lacks, and its runs equal the others bit for bit;
-#  5. status reports every run.
+#  5. status reports every run;
+#  6. report (ahhs-report study) of the study directory and of its export give the same numbers.
 bin=${1:?usage: study_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_netns "$0" "$@"
@@ -165,4 +166,26 @@ echo "== 5. status"
 "$S" status $tmp/A >$tmp/status || fail "status"
 grep -q "study tiny in $tmp/A: 4 of 4 runs complete, 0 running, 0 failed" $tmp/status || fail "$(cat $tmp/status)"
 grep -Eq "^pend1 +2/2" $tmp/status || fail "$(cat $tmp/status)"
+
+echo "== 6. report"
+# Of the study directory (its runs read from their summaries, not their databases) and of an
+# export: the same numbers.
+"$S" report $tmp/A -o $tmp/RA >$tmp/out 2>&1 || fail "report: $(cat $tmp/out)"
+grep -q "results.md, results.json and one directory per task (4 of 4 runs complete)" $tmp/out || fail "$(cat $tmp/out)"
+[[ -s $tmp/RA/results.md && -s $tmp/RA/pendulum/box_best.png && -s $tmp/RA/pendulum/neighbourhood-pend1/neighbourhood.png ]] ||
+  fail "report files: $(find $tmp/RA | head -30)"
+# The paper's claims name the paper's configurations; this plan has none of them.
+grep -q "| Pendulum: AHHS2-15 is better than AHHS1-60 | yes, Wilcoxon p < 0.05 (n = 10 AHHS2, 8 AHHS1) | not run yet" $tmp/RA/results.md ||
+  fail "claims: $(cat $tmp/RA/results.md)"
+"$S" export $tmp/A $tmp/E2 >/dev/null && "$S" report $tmp/E2 -o $tmp/RE --no-replay >/dev/null 2>&1 || fail "report of an export"
+python3 -c "
+import json
+a, e = (json.load(open(f'$tmp/{d}/results.json'))['configs'] for d in ('RA', 'RE'))
+assert {k: v['best'] for k, v in a.items()} == {k: v['best'] for k, v in e.items()}, (a, e)
+assert a['pend1']['runs'] == 2 and a['pend1']['robustness']['replays'] == 8, a['pend1']
+" || fail "study and export reports differ"
+"$S" report $tmp/A -o $tmp/RA >$tmp/out 2>&1; [[ $? == 2 ]] && grep -q "pass --overwrite" $tmp/out || fail "report over a report: $(cat $tmp/out)"
+"$S" report $tmp/A -o $tmp/RA --overwrite --no-replay >/dev/null 2>&1 && [[ ! -e $tmp/RA/pendulum/neighbourhood-pend1 ]] ||
+  fail "--overwrite left the old report's files"
+"$S" report $tmp -o $tmp/RX >$tmp/out 2>&1; [[ $? == 1 ]] && grep -q "is not a study directory or export" $tmp/out || fail "$(cat $tmp/out)"
 echo "PASS"

@@ -3,6 +3,7 @@
 
   ahhs-report RUN_DIR... -o OUT_DIR [--no-replay]
   ahhs-report neighbourhood GENOME_OR_RUN_DIR [--mutants 35] -o OUT_DIR [scenario options]
+  ahhs-report study STUDY_DIR_OR_EXPORT -o OUT_DIR (study_report.py)
 
 Reads each run's SQLite database directly (Python's sqlite3), replays the best genome of the
 first run with ahhs-replay for the per-tick figures, and writes every figure as PNG and SVG.
@@ -41,13 +42,15 @@ class UsageError(Exception):
 
 
 class Run:
-    def __init__(self, path):
+    def __init__(self, path, prefer_summary=False):
+        """prefer_summary: a complete run of a study is read from its summary and exports
+        (summary.json, generations.csv, best.json) without opening its database."""
         self.path = path
         if not os.path.isdir(path):
             raise ReportError(f"{path} is not a directory")
         db = os.path.join(path, "run.sqlite")
         summary = os.path.join(path, "summary.json")
-        self.exported = not os.path.isfile(db) and os.path.isfile(summary)
+        self.exported = os.path.isfile(summary) and (prefer_summary or not os.path.isfile(db))
         if self.exported:  # a run of a study export: summary.json, generations.csv, best.json
             self._load_export(summary)
             return
@@ -372,6 +375,28 @@ def rule_parts(rules_csv, ticks):
     return parts
 
 
+def rule_edges(genome, parts, threshold=0.0):
+    """The rule parts that triggered in more than `threshold` of the ticks (parts: rule_parts):
+    (rule, part, source, target, positive, share), sources and targets named S<i>, H<i>, A<i>."""
+    kinds = ("sensor", "linear", "nonlinear", "actuator")
+    for r, rule in enumerate(genome["rules"]):
+        for k, part in enumerate(kinds):
+            active = parts[r, k] if r < len(parts) else 0
+            if active <= threshold:
+                continue
+            if genome["variant"] == "ahhs2":
+                s, i = int(math.floor(rule["sensor"])), int(math.floor(rule["input"]))
+                o, a = int(math.floor(rule["output"])), int(math.floor(rule["actuator"]))
+                src = f"S{s}" if part == "sensor" else f"H{i}"
+                dst = f"A{a}" if part == "actuator" else f"H{o}"
+            else:
+                if rule["type"] != part:
+                    continue
+                src = f"S{rule['input']}" if part == "sensor" else f"H{rule['input']}"
+                dst = f"A{rule['output']}" if part == "actuator" else f"H{rule['output']}"
+            yield r, part, src, dst, rule["lambda"] >= 0, active
+
+
 def controller_graph(genome, parts, out_dir, written, name="controller", task="gait"):
     """Sensors -> hormones -> actuators: one edge per rule part that triggered in the replay,
     its width by the share of ticks it triggered (the most active module); parts that never
@@ -379,31 +404,14 @@ def controller_graph(genome, parts, out_dir, written, name="controller", task="g
     lines = ["digraph controller {", "  rankdir=LR; node [fontsize=10]; edge [fontsize=8];"]
     edge_lines, used = [], set()
     edges = 0
-    kinds = ("sensor", "linear", "nonlinear", "actuator")
-    for r, rule in enumerate(genome["rules"]):
-        for k, part in enumerate(kinds):
-            active = parts[r, k] if r < len(parts) else 0
-            if active <= 0:
-                continue
-            if genome["variant"] == "ahhs2":
-                s, i = int(math.floor(rule["sensor"])), int(math.floor(rule["input"]))
-                o, a = int(math.floor(rule["output"])), int(math.floor(rule["actuator"]))
-                src = f"S{s}" if part == "sensor" else f"H{i}"
-                dst = f"A{a}" if part == "actuator" else f"H{o}"
-                positive = rule["lambda"] >= 0
-            else:
-                if rule["type"] != part:
-                    continue
-                src = f"S{rule['input']}" if part == "sensor" else f"H{rule['input']}"
-                dst = f"A{rule['output']}" if part == "actuator" else f"H{rule['output']}"
-                positive = rule["lambda"] >= 0
-            tag = {"sensor": "S", "linear": "L", "nonlinear": "N", "actuator": "A"}[part]
-            colour = "black" if positive else "firebrick"
-            pct = f"{100 * active:.0f}%" if active >= 0.01 else f"{100 * active:.1g}%"
-            edge_lines.append(f'  {src} -> {dst} [label="r{r} {tag} {pct}", '
-                              f'color={colour}, penwidth={0.6 + 4 * active:.2f}];')
-            used.update((src, dst))
-            edges += 1
+    for r, part, src, dst, positive, active in rule_edges(genome, parts):
+        tag = {"sensor": "S", "linear": "L", "nonlinear": "N", "actuator": "A"}[part]
+        colour = "black" if positive else "firebrick"
+        pct = f"{100 * active:.0f}%" if active >= 0.01 else f"{100 * active:.1g}%"
+        edge_lines.append(f'  {src} -> {dst} [label="r{r} {tag} {pct}", '
+                          f'color={colour}, penwidth={0.6 + 4 * active:.2f}];')
+        used.update((src, dst))
+        edges += 1
     # Only the sensors, hormones and actuators that an active rule part touches.
     pick = lambda p: sorted((n for n in used if n[0] == p), key=lambda n: int(n[1:]))
     if pick("S"):
@@ -453,24 +461,33 @@ def run_replay(bin_dir, argv):
 REPORT_FILES = (".png", ".svg", ".dot", ".md", ".csv", ".json", ".lcm", ".mp4")
 
 
-def prepare_out(out, overwrite):
+def is_report_file(path, allow_dirs):
+    if os.path.isdir(path) and not os.path.islink(path):
+        return allow_dirs and all(is_report_file(os.path.join(path, f), True)
+                                  for f in os.listdir(path))
+    return os.path.isfile(path) and path.endswith(REPORT_FILES)
+
+
+def prepare_out(out, overwrite, allow_dirs=False):
     """Makes the output directory. An old report in it is replaced only with --overwrite (so
-    that no stale figure survives); a directory holding anything else is never emptied."""
+    that no stale figure survives); a directory holding anything else is never emptied. A study
+    report (allow_dirs) has subdirectories of report files."""
     if os.path.isdir(out) and os.listdir(out):
         if not overwrite:
             raise UsageError(f"{out} holds files; pass --overwrite to replace the report in it")
         foreign = [f for f in os.listdir(out)
-                   if not (os.path.isfile(os.path.join(out, f)) and f.endswith(REPORT_FILES))]
+                   if not is_report_file(os.path.join(out, f), allow_dirs)]
         if foreign:
             raise UsageError(f"{out} holds {foreign[0]}, which is not part of a report; "
                              "give an empty or new directory")
         for f in os.listdir(out):
-            os.remove(os.path.join(out, f))
+            path = os.path.join(out, f)
+            shutil.rmtree(path) if os.path.isdir(path) else os.remove(path)
     os.makedirs(out, exist_ok=True)
 
 
 def report_runs(args):
-    runs = [Run(p) for p in args.runs]
+    runs = [p if isinstance(p, Run) else Run(p) for p in args.runs]
     prepare_out(args.out, args.overwrite)
     written = []
     groups = OrderedDict()
@@ -607,6 +624,9 @@ def main(argv):
     if len(argv) >= 2 and argv[0] == "--bin":  # the build's wrapper passes its bin directory
         os.environ.setdefault("AHHS_BIN", argv[1])
         argv = argv[2:]
+    if argv and argv[0] == "study":
+        import study_report
+        return study_report.main(argv[1:])
     if argv and argv[0] == "neighbourhood":
         p = argparse.ArgumentParser(prog="ahhs-report neighbourhood",
                                     description="fitness of single mutants of a genome")
@@ -627,7 +647,8 @@ def main(argv):
     p = argparse.ArgumentParser(
         prog="ahhs-report", description="figures and a summary for ahhs-evolve runs",
         epilog="also: ahhs-report neighbourhood GENOME_OR_RUN_DIR -o DIR [--mutants N]: the "
-               "mutation neighbourhood of a genome (ahhs-report neighbourhood --help)")
+               "mutation neighbourhood of a genome (ahhs-report neighbourhood --help); "
+               "ahhs-report study STUDY_DIR -o DIR: a study against the paper's claims")
     p.add_argument("runs", nargs="+",
                    help="run directories, or runs of a study export (ahhs-study export)")
     p.add_argument("-o", "--out", required=True, help="output directory")
@@ -640,11 +661,15 @@ def main(argv):
 
 
 if __name__ == "__main__":
+    # One instance of this module (study_report imports it as ahhs_report), so that its
+    # exceptions are the ones caught here.
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import ahhs_report as report
     try:
-        sys.exit(main(sys.argv[1:]))
-    except UsageError as e:
+        sys.exit(report.main(sys.argv[1:]))
+    except report.UsageError as e:
         print(f"ahhs-report: {e}", file=sys.stderr)
         sys.exit(2)
-    except ReportError as e:
+    except report.ReportError as e:
         print(f"ahhs-report: {e}", file=sys.stderr)
         sys.exit(1)

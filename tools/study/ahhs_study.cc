@@ -12,9 +12,11 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -372,6 +374,16 @@ int main(int argc, char** argv) {
   exp->add_option("study", study_dir, "study directory")->required();
   exp->add_option("export", export_dir, "export directory (new, or an export of this study)")
       ->required();
+  CLI::App* report = app.add_subcommand(
+      "report",
+      "compare the configurations of each task and the paper's claims (ahhs-report study): "
+      "figures, results.md");
+  std::string report_dir;
+  bool overwrite = false, no_replay = false;
+  report->add_option("study", study_dir, "study directory or export")->required();
+  report->add_option("-o,--out", report_dir, "output directory")->required();
+  report->add_flag("--overwrite", overwrite, "replace a report in --out");
+  report->add_flag("--no-replay", no_replay, "no replay figures and no mutation neighbourhoods");
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   try {
@@ -390,6 +402,18 @@ int main(int argc, char** argv) {
       return RunStudy(study, options);
     }
     if (*status) return Status(at::StudyDir::Open(study_dir));
+    if (*report) {
+      // The statistics and figures are ahhs-report's (Python): hand over to it.
+      const std::string tool = ahhs::arena::ExecutableDir() + "/ahhs-report";
+      std::vector<std::string> args{tool, "study", study_dir, "-o", report_dir};
+      if (overwrite) args.push_back("--overwrite");
+      if (no_replay) args.push_back("--no-replay");
+      std::vector<char*> argv_out;
+      for (auto& a : args) argv_out.push_back(a.data());
+      argv_out.push_back(nullptr);
+      ::execv(tool.c_str(), argv_out.data());
+      throw std::runtime_error("cannot run " + tool + ": " + std::strerror(errno));
+    }
     if (*exp) {
       const int n = at::StudyDir::Open(study_dir).Export(export_dir);
       std::printf("exported %d complete runs to %s\n", n, export_dir.c_str());

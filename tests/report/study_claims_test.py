@@ -1,0 +1,72 @@
+#!/usr/bin/python3
+"""The study report's claim verdicts (tools/report/study_report.py) on made-up studies whose
+answers are known: each claim row must say reproduced, differs, open or close as the numbers
+demand, and never give a verdict on fewer than MIN_RUNS runs."""
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.environ["AHHS_SOURCE_DIR"], "tools", "report"))
+import numpy as np  # noqa: E402
+import study_report as sr  # noqa: E402
+
+
+class FakeRun:
+    def __init__(self, task, best):
+        scenario, _, joints = task.partition("-")
+        self.task, self.config = task, {"scenario": scenario, "joints": joints or "damped"}
+        self._best = best
+
+    def best_overall(self):
+        return self._best
+
+
+def config(name, bests, speed=None, **extra):
+    task = "pendulum" if name.startswith("pendulum") else "-".join(name.split("-")[:2])
+    c = sr.Config(name, len(bests), [FakeRun(task, b) for b in bests])
+    c.speed = speed or [10] * len(bests)
+    for k, v in extra.items():
+        setattr(c, k, v)
+    return c
+
+
+def rows(configs):
+    maxima = {}
+    for c in configs:
+        if c.runs:
+            maxima[c.task] = max(maxima.get(c.task, 0), float(np.max(c.best)))
+    return {claim: (ours, verdict) for claim, _, ours, verdict in sr.make_claims(configs, maxima)}
+
+
+rng = np.random.default_rng(1)
+# The paper's pendulum: AHHS2-15 clearly better, same speed.
+r = rows([config("pendulum-ahhs2-15", list(0.6 + 0.01 * rng.random(10)), [5] * 10),
+          config("pendulum-ahhs1-60", list(0.3 + 0.01 * rng.random(8)), [5] * 8)])
+assert r["Pendulum: AHHS2-15 is better than AHHS1-60"][1] == "reproduced", r
+assert r["Pendulum: evolution speed (generation reaching 75 % of the maximum)"][1] == "reproduced"
+# Ours so far: the opposite.
+r = rows([config("pendulum-ahhs2-15", list(0.3 + 0.01 * rng.random(10))),
+          config("pendulum-ahhs1-60", list(0.6 + 0.01 * rng.random(10)))])
+assert r["Pendulum: AHHS2-15 is better than AHHS1-60"][1] == "opposite: AHHS1-60 is better", r
+# Too few runs: no verdict. No runs: not run yet.
+r = rows([config("pendulum-ahhs2-15", [0.5, 0.6]), config("pendulum-ahhs1-60", [0.1, 0.2])])
+claim = r["Pendulum: AHHS2-15 is better than AHHS1-60"]
+assert claim[1] == "open" and "too few complete runs" in claim[0], claim
+r = rows([config("pendulum-ahhs2-15", [])])
+assert r["Pendulum: AHHS2-15 is better than AHHS1-60"] == (
+    "not run yet (pendulum-ahhs2-15, pendulum-ahhs1-60)", "open"), r
+# Fixed docking: 11 of 20 AHHS2-50 runs at 1.4 or more (55 %) against a maximum of 1.75.
+r = rows([config("gait-fixed-ahhs2-50", [1.4] * 10 + [1.75] + [0.5] * 9)])
+ours, verdict = r["Fixed gait: share of AHHS2-50 runs within 80 % of the maximum"]
+assert verdict == "close" and ours.startswith("55% of 20 runs >= 1.36"), ours
+# AHHS1-20 significantly below the other two, which do not differ: reproduced.
+low, high = list(0.2 + 0.01 * rng.random(10)), lambda: list(1.0 + 0.5 * rng.random(10))
+r = rows([config("gait-fixed-ahhs1-20", low), config("gait-fixed-ahhs1-80", high()),
+          config("gait-fixed-ahhs2-50", high()), config("gait-fixed-ahhs2-20", [0.1] * 6)])
+assert r["Fixed gait: AHHS1-20 differs significantly from AHHS1-80 and from AHHS2-50"][1] == \
+    "reproduced", r
+assert r["Fixed gait: AHHS2-20 performs badly"][1] == "reproduced", r
+# Damped: AHHS1 varies more; no significant difference.
+r = rows([config("gait-damped-ahhs2-30", list(1.0 + 0.1 * rng.random(10))),
+          config("gait-damped-ahhs1-120", list(0.6 + 0.9 * rng.random(10)))])
+assert r["Damped gait: AHHS1 runs vary more"][1] == "reproduced", r
+print("study claims: PASS")

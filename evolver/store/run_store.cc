@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <sqlite3.h>
 #include <sys/file.h>
+#include <sys/vfs.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -123,6 +124,34 @@ std::string FormatDouble(double v) {
   return buf;
 }
 
+// SQLite's WAL keeps its index in shared memory beside the database, which a network
+// filesystem does not share between hosts, and NFS locking is unreliable with it: a run directory
+// on one gets a rollback journal instead (docs/evolution.md, "On a Slurm cluster"). The journal
+// mode never changes what is stored.
+bool OnNetworkFilesystem(const fs::path& dir) {
+  struct statfs st {};
+  if (::statfs(dir.c_str(), &st) != 0) return false;
+  switch (static_cast<unsigned long>(st.f_type)) {
+    case 0x6969UL:      // NFS
+    case 0xFF534D42UL:  // CIFS
+    case 0xFE534D42UL:  // SMB2
+    case 0x517BUL:      // SMB
+    case 0x0BD00BD0UL:  // Lustre
+    case 0x47504653UL:  // GPFS
+    case 0x19830326UL:  // BeeGFS
+    case 0x00C36400UL:  // CephFS
+    case 0x013111A8UL:  // IBRIX
+    case 0x65735546UL:  // FUSE (sshfs, s3fs, ...)
+      return true;
+    default:
+      return false;
+  }
+}
+
+const char* JournalPragma(const fs::path& dir) {
+  return OnNetworkFilesystem(dir) ? "PRAGMA journal_mode=DELETE;" : "PRAGMA journal_mode=WAL;";
+}
+
 sqlite3* OpenDatabase(const fs::path& path, int flags) {
   sqlite3* db = nullptr;
   if (sqlite3_open_v2(path.c_str(), &db, flags, nullptr) != SQLITE_OK) {
@@ -193,8 +222,8 @@ std::unique_ptr<RunStore> RunStore::Create(const std::string& dir, const std::st
     throw;
   }
   std::unique_ptr<RunStore> store(new RunStore(dir, db, lock_fd));
+  store->Exec(JournalPragma(root));
   store->Exec(
-      "PRAGMA journal_mode=WAL;"
       "PRAGMA synchronous=NORMAL;"
       "CREATE TABLE run(key TEXT PRIMARY KEY, value TEXT NOT NULL);"
       "CREATE TABLE sessions(session INTEGER PRIMARY KEY, started_utime INTEGER NOT NULL,"
@@ -248,7 +277,10 @@ std::unique_ptr<RunStore> RunStore::Open(const std::string& dir, StoreAccess acc
   } catch (const RunStoreError& e) {
     throw RunStoreError(dir + ": not a readable run database (" + e.what() + ")");
   }
-  if (access == StoreAccess::kWrite) fs::create_directories(root / "best", ec);
+  if (access == StoreAccess::kWrite) {
+    fs::create_directories(root / "best", ec);
+    store->Exec(JournalPragma(root));  // a run may move between filesystems between sessions
+  }
   return store;
 }
 

@@ -3,6 +3,9 @@
 //   ahhs-study run --resume DIR [...]
 //   ahhs-study status DIR
 //   ahhs-study export DIR EXPORT
+//   ahhs-study report DIR -o OUT
+//   ahhs-study submit PLAN --out DIR --slurm [...] | submit --resume DIR --slurm
+//   ahhs-study task DIR --submission S --index I    (a Slurm array task)
 // Exit codes: 0 done, 1 a run or the study failed, 2 bad options or plan, 130 interrupted.
 #include <fcntl.h>
 #include <sys/file.h>
@@ -122,18 +125,11 @@ struct Running {
   std::chrono::steady_clock::time_point started;
 };
 
-// Starts one run's ahhs-evolve (new or resumed) as a child; returns false when the run directory
-// stays in use by another process.
-bool StartRun(const at::StudyDir& study, const at::StudyRun& run, const RunOptions& options,
-              const std::string& evolve, ahhs::arena::ChildProcesses* children) {
+// The ahhs-evolve command of one run, new or resumed, on its own port (ttl=0), with the run's
+// local workers; logged to the run's log, which the command's output is appended to.
+std::vector<std::string> EvolveArgv(const at::StudyDir& study, const at::StudyRun& run,
+                                    const RunOptions& options, const std::string& evolve) {
   const std::string dir = study.RunDir(run);
-  for (int k = 0; ahhs::evolver::RunStore::InUse(dir); ++k) {
-    if (k == 0)
-      std::printf("[%s] waiting for the last process of %s to end\n", Stamp().c_str(),
-                  run.Name().c_str());
-    if (k >= 600 || g_signals > 0) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
   std::error_code ec;
   fs::remove(study.FailedFile(run), ec);
   fs::create_directories(fs::path(dir).parent_path(), ec);
@@ -148,13 +144,26 @@ bool StartRun(const at::StudyDir& study, const at::StudyRun& run, const RunOptio
     argv.insert(argv.end(), {"--config", study.ConfigFile(run.config), "--seed",
                              std::to_string(run.seed), "--out", dir, "--overwrite"});
   argv.insert(argv.end(), {"--workers", std::to_string(options.workers_per_run), "--lcm-url", url});
-  {
-    std::ofstream log(study.LogFile(run), std::ios::app);
-    log << "== ahhs-study " << Stamp() << ":";
-    for (const auto& a : argv) log << ' ' << a;
-    log << '\n';
+  std::ofstream log(study.LogFile(run), std::ios::app);
+  log << "== ahhs-study " << Stamp() << ":";
+  for (const auto& a : argv) log << ' ' << a;
+  log << '\n';
+  return argv;
+}
+
+// Starts one run's ahhs-evolve (new or resumed) as a child; returns false when the run directory
+// stays in use by another process.
+bool StartRun(const at::StudyDir& study, const at::StudyRun& run, const RunOptions& options,
+              const std::string& evolve, ahhs::arena::ChildProcesses* children) {
+  const std::string dir = study.RunDir(run);
+  for (int k = 0; ahhs::evolver::RunStore::InUse(dir); ++k) {
+    if (k == 0)
+      std::printf("[%s] waiting for the last process of %s to end\n", Stamp().c_str(),
+                  run.Name().c_str());
+    if (k >= 600 || g_signals > 0) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
-  children->Start(run.Name(), argv, false, study.LogFile(run));
+  children->Start(run.Name(), EvolveArgv(study, run, options, evolve), false, study.LogFile(run));
   return true;
 }
 
@@ -282,6 +291,141 @@ int RunStudy(const at::StudyDir& study, RunOptions options) {
   return 0;
 }
 
+// --- Slurm: one array task per run (docs/evolution.md, "On a Slurm cluster") ---
+
+struct SlurmOptions {
+  std::string partition, time;
+  std::string task_wrapper;  // a command every array task runs under (e.g. a container, a netns)
+  int cpus_per_run = 1;
+  std::string sbatch = "sbatch";
+};
+
+// The runs of one submission, one name per line: array task i runs line i.
+std::string SubmissionRuns(const std::string& submission) { return submission + "/runs.txt"; }
+
+// `ahhs-study task DIR --submission S --index I`: runs (or resumes) one run of the study to its
+// end in the foreground, as a Slurm array task does. A requeued or restarted task resumes it.
+int RunTask(const at::StudyDir& study, const std::string& submission, int index,
+            RunOptions options) {
+  std::ifstream list(SubmissionRuns(submission));
+  if (!list) throw std::runtime_error(SubmissionRuns(submission) + " cannot be read");
+  std::string name;
+  for (int i = 0; i <= index; ++i)
+    if (!std::getline(list, name))
+      throw std::runtime_error("array index " + std::to_string(index) + ": " +
+                               SubmissionRuns(submission) + " has only " + std::to_string(i) +
+                               " runs");
+  const auto runs = study.Runs();
+  const auto it = std::find_if(runs.begin(), runs.end(),
+                               [&](const at::StudyRun& r) { return r.Name() == name; });
+  if (it == runs.end()) throw std::runtime_error("the study has no run " + name);
+  const at::StudyRun run = *it;
+  if (study.State(run).kind == at::RunStateKind::kComplete) {
+    std::printf("[%s] %s is complete already\n", Stamp().c_str(), name.c_str());
+    return 0;
+  }
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);  // Slurm's cancel, time limit and requeue
+  ahhs::arena::ChildProcesses children;
+  if (!StartRun(study, run, options, ahhs::arena::ExecutableDir() + "/ahhs-evolve", &children))
+    throw std::runtime_error(study.RunDir(run) + " stays in use by another process");
+  std::printf("[%s] started %s (port %d, %d workers)\n", Stamp().c_str(), name.c_str(),
+              options.port_base + run.index, options.workers_per_run);
+  std::fflush(stdout);
+  int status = 0;
+  for (bool ended = false; !ended;) {
+    if (g_signals > 0) {
+      std::printf("[%s] stopping %s (it keeps its committed generations)\n", Stamp().c_str(),
+                  name.c_str());
+      children.StopAll(std::chrono::seconds(30));
+      return kExitInterrupted;
+    }
+    for (const auto& end : children.Reap()) {
+      status = end.status;
+      ended = true;
+    }
+    if (!ended) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
+    const std::string why = "ahhs-evolve ended (" + ahhs::arena::DescribeExit(status) +
+                            "): " + LastLine(study.LogFile(run));
+    std::ofstream(study.FailedFile(run)) << why << '\n';
+    std::printf("[%s] FAILED %s: %s\n", Stamp().c_str(), name.c_str(), why.c_str());
+    return kExitFailure;
+  }
+  study.WriteSummary(run);
+  std::printf("[%s] complete %s: best %.6g\n", Stamp().c_str(), name.c_str(),
+              study.State(run).best.value_or(0.0));
+  return 0;
+}
+
+// Submits the study's unfinished runs (those of `only`, if given) as one Slurm job array.
+int Submit(const at::StudyDir& study, const RunOptions& options, const SlurmOptions& slurm) {
+  std::vector<at::StudyRun> queue;
+  for (const auto& name : options.only)
+    if (std::none_of(study.plan().configs.begin(), study.plan().configs.end(),
+                     [&](const at::StudyConfig& c) { return c.name == name; }))
+      throw at::StudyPlanError("--only " + name + ": the study has no such configuration");
+  for (const auto& run : study.Runs())
+    if (study.State(run).kind != at::RunStateKind::kComplete &&
+        (options.only.empty() ||
+         std::find(options.only.begin(), options.only.end(), run.config) != options.only.end()))
+      queue.push_back(run);
+  if (queue.empty()) {
+    std::printf("study %s in %s: every chosen run is complete; nothing to submit\n",
+                study.plan().name.c_str(), study.dir().c_str());
+    return 0;
+  }
+  int number = 1;
+  while (fs::exists(study.dir() + "/slurm/submit-" + std::to_string(number))) ++number;
+  const std::string submission = study.dir() + "/slurm/submit-" + std::to_string(number);
+  fs::create_directories(submission);
+  {
+    std::ofstream list(SubmissionRuns(submission));
+    for (const auto& run : queue) list << run.Name() << '\n';
+  }
+  const std::string script = submission + "/array.sh";
+  {
+    std::ofstream out(script);
+    out << "#!/bin/sh\n"
+        << "# Made by ahhs-study submit: one array task per line of runs.txt.\n"
+        << "#SBATCH --job-name=ahhs-" << study.plan().name << "\n"
+        << "#SBATCH --array=0-" << queue.size() - 1 << "\n"
+        << "#SBATCH --ntasks=1\n"
+        << "#SBATCH --cpus-per-task=" << slurm.cpus_per_run << "\n"
+        << "#SBATCH --output=" << submission << "/task-%a.out\n"
+        << "#SBATCH --open-mode=append\n"
+        << "#SBATCH --requeue\n";
+    if (!slurm.partition.empty()) out << "#SBATCH --partition=" << slurm.partition << "\n";
+    if (!slurm.time.empty()) out << "#SBATCH --time=" << slurm.time << "\n";
+    out << "exec " << (slurm.task_wrapper.empty() ? "" : slurm.task_wrapper + " ") << "'"
+        << ahhs::arena::ExecutableDir() << "/ahhs-study' task '" << study.dir()
+        << "' --submission '" << submission << "' --index \"$SLURM_ARRAY_TASK_ID\" --workers "
+        << slurm.cpus_per_run << " --port-base " << options.port_base << "\n";
+  }
+  fs::permissions(script, fs::perms::owner_all | fs::perms::group_read | fs::perms::others_read);
+  const std::string command = "'" + slurm.sbatch + "' --parsable '" + script + "' 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) throw std::runtime_error("cannot run " + slurm.sbatch);
+  std::string out;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  const int status = pclose(pipe);
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  if (status != 0 || out.empty()) {
+    fs::remove_all(submission);
+    throw std::runtime_error("sbatch refused the job array: " +
+                             (out.empty() ? std::string("no output (is Slurm installed?)") : out));
+  }
+  std::ofstream(submission + "/job") << out << '\n';
+  std::printf(
+      "study %s in %s: %zu runs submitted as Slurm job array %s (script %s); follow with "
+      "squeue and %s/ahhs-study status %s\n",
+      study.plan().name.c_str(), study.dir().c_str(), queue.size(), out.c_str(), script.c_str(),
+      ahhs::arena::ExecutableDir().c_str(), study.dir().c_str());
+  return 0;
+}
+
 int Status(const at::StudyDir& study) {
   const auto runs = study.Runs();
   std::map<std::string, std::pair<int, int>> per_config;  // complete, total
@@ -374,6 +518,53 @@ int main(int argc, char** argv) {
   exp->add_option("study", study_dir, "study directory")->required();
   exp->add_option("export", export_dir, "export directory (new, or an export of this study)")
       ->required();
+  CLI::App* submit = app.add_subcommand(
+      "submit", "submit a study's unfinished runs to a Slurm cluster as one job array");
+  SlurmOptions slurm;
+  bool use_slurm = false;
+  RunOptions submit_options;
+  submit->add_option("plan", plan_file, "study plan (TOML)");
+  auto* submit_out =
+      submit->add_option("--out", out_dir, "new study directory (shared filesystem)");
+  auto* submit_resume =
+      submit->add_option("--resume", resume_dir, "submit the unfinished runs of this study");
+  submit_out->excludes(submit_resume);
+  submit->add_flag("--slurm", use_slurm, "submit to Slurm (sbatch), the only engine")->required();
+  submit->add_option("--partition", slurm.partition, "Slurm partition (default: the cluster's)");
+  submit
+      ->add_option("--cpus-per-run", slurm.cpus_per_run,
+                   "cores of each array task: its run's local workers")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  submit->add_option("--time", slurm.time, "time limit of each array task (Slurm's format)");
+  submit->add_option("--task-wrapper", slurm.task_wrapper,
+                     "a command each array task runs ahhs-study task under (for example "
+                     "'apptainer exec IMAGE' or tools/ahhs-netns)");
+  submit
+      ->add_option("--port-base", submit_options.port_base,
+                   "run i of the plan uses LCM port BASE + i (ttl=0) on its node")
+      ->check(CLI::Range(1024, 60000))
+      ->capture_default_str();
+  submit->add_option("--only", submit_options.only, "submit only these configurations")
+      ->delimiter(',');
+  submit->add_option("--from-export", submit_options.from_export,
+                     "take the complete runs of this export instead of running them again");
+  CLI::App* task = app.add_subcommand(
+      "task", "run one run of a submission to its end (what a Slurm array task does)");
+  std::string submission;
+  int task_index = 0;
+  RunOptions task_options;
+  task_options.workers_per_run = 1;
+  task->add_option("study", study_dir, "study directory")->required();
+  task->add_option("--submission", submission, "submission directory (STUDY/slurm/submit-N)")
+      ->required();
+  task->add_option("--index", task_index, "array index: line of the submission's runs.txt")
+      ->required()
+      ->check(CLI::Range(0, 1000000));
+  task->add_option("--workers", task_options.workers_per_run, "local ahhs-worker processes")
+      ->check(CLI::Range(1, 256));
+  task->add_option("--port-base", task_options.port_base, "as ahhs-study submit's")
+      ->check(CLI::Range(1024, 60000));
   CLI::App* report = app.add_subcommand(
       "report",
       "compare the configurations of each task and the paper's claims (ahhs-report study): "
@@ -402,6 +593,26 @@ int main(int argc, char** argv) {
       return RunStudy(study, options);
     }
     if (*status) return Status(at::StudyDir::Open(study_dir));
+    if (*submit) {
+      if (resume_dir.empty() == out_dir.empty())
+        throw CLI::ValidationError("give PLAN --out DIR for a new study, or --resume DIR");
+      if (!resume_dir.empty() && !plan_file.empty())
+        throw CLI::ValidationError("--resume takes no plan (the study keeps its own)");
+      if (!out_dir.empty() && plan_file.empty())
+        throw CLI::ValidationError("a new study needs a PLAN");
+      if (!resume_dir.empty()) {
+        const at::StudyDir study = at::StudyDir::Open(resume_dir);
+        if (!submit_options.from_export.empty()) study.Import(submit_options.from_export, nullptr);
+        return Submit(study, submit_options, slurm);
+      }
+      const at::StudyPlan plan = at::LoadStudyPlan(plan_file);
+      const std::string evolve = ahhs::arena::ExecutableDir() + "/ahhs-evolve";
+      const at::StudyDir study = at::StudyDir::Create(
+          out_dir, plan_file, plan, [&](const std::string& f) { return ResolveConfig(evolve, f); });
+      if (!submit_options.from_export.empty()) study.Import(submit_options.from_export, nullptr);
+      return Submit(study, submit_options, slurm);
+    }
+    if (*task) return RunTask(at::StudyDir::Open(study_dir), submission, task_index, task_options);
     if (*report) {
       // The statistics and figures are ahhs-report's (Python): hand over to it.
       const std::string tool = ahhs::arena::ExecutableDir() + "/ahhs-report";

@@ -93,7 +93,9 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
 
 void FarmEvaluator::FeedStatuses(Batch* batch, FarmClock::time_point now) {
   for (const auto& [name, w] : seen_) {
-    if (now - w.heard > options_.lease.worker_silence || quarantined_.count(name)) continue;
+    if (now - w.heard > options_.lease.worker_silence || quarantined_.count(name) ||
+        declined_.count(name))
+      continue;
     std::vector<std::int64_t> ours;
     int others = 0;
     if (SameRun(w.status.run, options_.run))
@@ -146,6 +148,16 @@ void FarmEvaluator::TakeResults(Batch* batch, FarmClock::time_point heard) {
       ++counters_.duplicates;
       continue;
     }
+    if (o.status == FarmResult::Status::kRefused) {
+      // A worker dedicated to another run: not the job's fault, and no more jobs for it.
+      if (batch->table.OnRefusal(o.job, o.attempt, o.worker) == LeaseTable::Verdict::kReissued &&
+          declined_.insert(o.worker).second) {
+        batch->table.Forget(o.worker);
+        hooks_.report("worker " + o.worker + " refused job " + std::to_string(o.job) + " (" +
+                      o.message + "); it gets no jobs from this run");
+      }
+      continue;
+    }
     const bool valid =
         o.status == FarmResult::Status::kOk && std::isfinite(o.fitness) && std::isfinite(o.cost);
     const auto verdict = batch->table.OnResult(o.job, o.attempt, o.worker, valid, heard);
@@ -170,9 +182,7 @@ void FarmEvaluator::TakeResults(Batch* batch, FarmClock::time_point heard) {
 void FarmEvaluator::OnInvalid(Batch* batch, const FarmResult& o, bool failed) {
   ++counters_.invalid_results;
   const std::string what =
-      o.status == FarmResult::Status::kOk
-          ? "a non-finite fitness"
-          : (o.status == FarmResult::Status::kRefused ? "a refusal: " : "an error: ") + o.message;
+      o.status == FarmResult::Status::kOk ? "a non-finite fitness" : "an error: " + o.message;
   hooks_.report("worker " + o.worker + " returned " + what + " for job " + std::to_string(o.job) +
                 (failed ? "; giving up" : "; re-issued"));
   if (++invalid_by_worker_[o.worker] == options_.quarantine_after &&

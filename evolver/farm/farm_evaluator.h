@@ -105,7 +105,8 @@ class FarmEvaluator : public FitnessEvaluator {
   std::set<std::string> refused_;
   std::map<std::string, int> invalid_by_worker_;
   std::set<std::string> quarantined_;
-  std::vector<FarmResult> inbox_;  // results received during the current Handle()
+  std::set<std::string> declined_;  // workers that refused a job: they serve another run only
+  std::vector<FarmResult> inbox_;   // results received during the current Handle()
 };
 
 }  // namespace ahhs::evolver

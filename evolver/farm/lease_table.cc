@@ -95,6 +95,17 @@ LeaseTable::Verdict LeaseTable::OnResult(std::int64_t id, int attempt, const std
   return Verdict::kReissued;
 }
 
+LeaseTable::Verdict LeaseTable::OnRefusal(std::int64_t id, int attempt, const std::string& worker) {
+  auto it = jobs_.find(id);
+  if (it == jobs_.end() || it->second.done) return Verdict::kIgnored;
+  Job& job = it->second;
+  if (!job.lease || job.lease->worker != worker || job.lease->attempt != attempt)
+    return Verdict::kIgnored;
+  EndLease(job);
+  job.excluded.insert(worker);
+  return Verdict::kReissued;
+}
+
 std::vector<Reissue> LeaseTable::Expire(FarmClock::time_point now) {
   std::vector<Reissue> out;
   for (auto& [id, job] : jobs_) {

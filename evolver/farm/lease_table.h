@@ -66,6 +66,10 @@ class LeaseTable {
   std::vector<Dispatch> Schedule(FarmClock::time_point now);
 
   enum class Verdict { kAccepted, kIgnored, kReissued, kFailed };
+  // A refusal of (job, attempt) by `worker` (it serves another run only): the job goes to
+  // another worker without counting as an invalid answer (kReissued), or kIgnored when it is
+  // not the current lease.
+  Verdict OnRefusal(std::int64_t job, int attempt, const std::string& worker);
   // A result for (job, attempt) from `worker`; `valid` = status OK and finite fitness.
   Verdict OnResult(std::int64_t job, int attempt, const std::string& worker, bool valid,
                    FarmClock::time_point now);

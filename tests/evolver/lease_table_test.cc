@@ -136,3 +136,25 @@ TEST_CASE("an invalid result sends the job elsewhere, too many fail it") {
   CHECK(t.Failed(0));
   CHECK(t.Schedule(t0).empty());
 }
+
+TEST_CASE("a refusal sends the job elsewhere and never fails it") {
+  // Workers dedicated to another run refuse; however many refuse, the job is not failed
+  // (ahhs-evolve failed a run when 5 refusals hit one job, 1 in 40 concurrent runs).
+  LeaseTable t(Options());
+  t.AddJob(0);
+  for (const char* w : {"other-a", "other-b", "other-c", "other-d"})
+    t.OnWorkerStatus(w, 1, {}, 0, t0);
+  for (int k = 0; k < 4; ++k) {
+    const auto d = t.Schedule(t0);
+    REQUIRE(d.size() == 1);
+    CHECK(t.OnRefusal(0, d[0].attempt, d[0].worker) == LeaseTable::Verdict::kReissued);
+    CHECK(t.OnRefusal(0, d[0].attempt, d[0].worker) == LeaseTable::Verdict::kIgnored);
+    t.Forget(d[0].worker);
+  }
+  CHECK_FALSE(t.Failed(0));
+  t.OnWorkerStatus("ours", 1, {}, 0, t0);
+  const auto d = t.Schedule(t0);
+  REQUIRE(d.size() == 1);
+  CHECK(d[0].worker == "ours");
+  CHECK(t.OnResult(0, d[0].attempt, "ours", true, t0) == LeaseTable::Verdict::kAccepted);
+}

@@ -199,10 +199,20 @@ Genome GenomeFromJson(const json& doc) {
 namespace {
 
 json ParseJsonText(const std::string& text, const std::string& source) {
+  // The last key read names the field of a number too large for a double (1e400), which the
+  // parser reports without a position.
+  std::string last_key;
+  const json::parser_callback_t track = [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::key && parsed.is_string()) last_key = parsed;
+    return true;
+  };
   try {
-    return json::parse(text);
+    return json::parse(text, track);
   } catch (const json::parse_error& e) {
     throw GenomeFileError(source + ": not valid JSON (" + std::string(e.what()) + ")");
+  } catch (const json::out_of_range& e) {
+    throw GenomeFileError(source + ": " + (last_key.empty() ? "a number" : last_key) +
+                          ": out of range (" + std::string(e.what()) + ")");
   }
 }
 

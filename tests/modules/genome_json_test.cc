@@ -57,6 +57,13 @@ void ExpectRejected(const json& doc, const std::string& field_in_message) {
 TEST_CASE("bad genome files of every kind are rejected, naming the field", "[genome-file]") {
   CHECK_THROWS_WITH(ParseGenome("{not json", "f.json"), Catch::Contains("f.json: not valid JSON"));
   CHECK_THROWS_WITH(ParseGenome("", "f.json"), Catch::Contains("not valid JSON"));
+  // A number too large for a double is the file's error, naming its field (issue 20's fuzzing
+  // found it escaping as nlohmann's out_of_range).
+  std::string huge = ValidAhhs2().dump();
+  const auto at = huge.find("\"alpha\":") + 8;
+  huge.replace(at, huge.find_first_of(",}", at) - at, "1e400");
+  CHECK_THROWS_AS(ParseGenome(huge, "f.json"), GenomeFileError);
+  CHECK_THROWS_WITH(ParseGenome(huge, "f.json"), Catch::Contains("f.json: alpha: out of range"));
   ExpectRejected(json::array(), "(document)");
 
   auto j = ValidAhhs2();

@@ -69,10 +69,16 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
   }
   batch.results.resize(jobs.size());
   std::size_t last_done = 0;
+  auto last_turn = FarmClock::now();
   while (!batch.table.AllDone()) {
     hooks_.poll();
     if (hooks_.interrupted()) throw FarmInterrupted();
     const auto now = FarmClock::now();
+    // The evolver did not run for a while (SIGSTOP, a suspended machine, a starved CPU): its
+    // local workers were stopped with it, so the time without workers counts from now, not from
+    // before the pause (a 60 s pause used to end the run with "no evaluation worker").
+    if (now - last_turn > std::chrono::seconds(1)) batch.last_worker_seen = now;
+    last_turn = now;
     FeedStatuses(&batch, now);
     for (const auto& r : batch.table.Expire(now)) {
       ++counters_.reissued;

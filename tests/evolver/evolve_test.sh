@@ -104,6 +104,16 @@ $E --resume $tmp/ctrlc >/dev/null 2>&1 || fail "resume after Ctrl-C"
 same_run $tmp/whole $tmp/ctrlc "Ctrl-C, resumed"
 $E --resume $tmp/ctrlc >$tmp/again.out 2>&1 || fail "resume of a finished run"
 grep -q "already complete" $tmp/again.out || fail "finished run: $(cat $tmp/again.out)"
+# A pause longer than --worker-wait and than the workers' silence limit (10 s): SIGSTOP of the
+# evolver and its workers, as on a suspended machine, is not a missing worker; the run goes on
+# and ends as the uninterrupted one (before, the study's runs failed after such a pause).
+$E $long --out $tmp/paused --workers 2 --worker-wait 2 >$tmp/paused.out 2>&1 &
+pid=$!
+for _ in $(seq 1 600); do [[ $(wc -l 2>/dev/null <$tmp/paused/generations.csv || echo 0) -gt 3 ]] && break; sleep 0.01; done
+kids=$(pgrep -P $pid | tr '\n' ' ')
+kill -STOP $pid $kids; sleep 12; kill -CONT $pid $kids
+wait $pid || fail "paused run: $(tail -3 $tmp/paused.out)"
+same_run $tmp/whole $tmp/paused "paused 12 s with --worker-wait 2"
 
 echo "== 3. external workers and faults"
 "$bin/ahhs-worker" --lcm-url "$url" --any-run --id steady >$tmp/w1.out 2>&1 &

@@ -19,19 +19,7 @@ wrap="--task-wrapper $netns"
 ahhs_scratch 'ahhs-study|ahhs-evolve|ahhs-worker'
 trap '[[ -n "${SLURM_CONF:-}" ]] && scancel -u "$(id -un)" 2>/dev/null; "$src/tools/slurm-local" stop $tmp/slurm; _ahhs_cleanup' EXIT
 S="$bin/ahhs-study"
-dump() {
-  sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, eval_seed, elite,
-    printf('%!.17g', fitness), printf('%!.17g', cost) FROM individuals ORDER BY generation, idx"
-}
-runs="pend2/seed-1 pend2/seed-2 pend1/seed-1 pend1/seed-2"
-same_study() {  # same_study DIR_A DIR_B WHAT
-  for r in $runs; do
-    dump "$1/$r" >$tmp/a.dump; dump "$2/$r" >$tmp/b.dump
-    [[ -s $tmp/a.dump ]] || fail "$3: $r is empty"
-    cmp -s $tmp/a.dump $tmp/b.dump || fail "$3: $r differs"
-  done
-  echo "$3: every run identical"
-}
+source "$src/tests/tools/study_lib.sh"
 # wait_array DIR SECONDS: until Slurm has no job left and every run of DIR is complete.
 wait_array() {
   for _ in $(seq $(($2 * 5))); do
@@ -40,24 +28,7 @@ wait_array() {
   done
   [[ -z "$(squeue -h)" ]] || fail "jobs still queued after $2 s: $(squeue)"
 }
-cat >$tmp/plan.toml <<PLAN
-name = "tiny"
-[defaults]
-generations = 12
-population = 24
-duration = 20.0
-[[config]]
-name = "pend2"
-preset = "$src/configs/pendulum-ahhs2-15.toml"
-seeds = 2
-set = { hormones = 4, rules = 6 }
-[[config]]
-name = "pend1"
-preset = "$src/configs/pendulum-ahhs1-60.toml"
-seeds = 2
-[config.set]
-rules = 20
-PLAN
+tiny_plan $tmp/plan.toml 12
 
 echo "== 0. a private Slurm"
 "$src/tools/slurm-local" start $tmp/slurm --port $((20000 + $$ % 20000)) >$tmp/slurm.out 2>&1 ||

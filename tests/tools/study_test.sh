@@ -14,40 +14,8 @@ ahhs_netns "$0" "$@"
 ahhs_scratch 'ahhs-study|ahhs-evolve|ahhs-worker'
 src=$AHHS_SOURCE_DIR
 S="$bin/ahhs-study"
-dump() {
-  sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, eval_seed, elite,
-    printf('%!.17g', fitness), printf('%!.17g', cost) FROM individuals ORDER BY generation, idx"
-}
-runs="pend2/seed-1 pend2/seed-2 pend1/seed-1 pend1/seed-2"
-same_study() {  # same_study DIR_A DIR_B WHAT
-  for r in $runs; do
-    dump "$1/$r" >$tmp/a.dump; dump "$2/$r" >$tmp/b.dump
-    [[ -s $tmp/a.dump ]] || fail "$3: $r is empty"
-    cmp -s $tmp/a.dump $tmp/b.dump || fail "$3: $r differs"
-    # best.json: the same genome and metadata but the run id (host, process, time).
-    grep -v '"run":' "$1/$r/best.json" >$tmp/a.json; grep -v '"run":' "$2/$r/best.json" >$tmp/b.json
-    cmp -s $tmp/a.json $tmp/b.json || { diff $tmp/a.json $tmp/b.json; fail "$3: $r/best.json differs"; }
-  done
-  echo "$3: every run identical"
-}
-cat >$tmp/plan.toml <<PLAN
-name = "tiny"
-[defaults]
-generations = 20
-population = 24
-duration = 20.0
-[[config]]
-name = "pend2"
-preset = "$src/configs/pendulum-ahhs2-15.toml"
-seeds = 2
-set = { hormones = 4, rules = 6 }
-[[config]]
-name = "pend1"
-preset = "$src/configs/pendulum-ahhs1-60.toml"
-seeds = 2
-[config.set]
-rules = 20
-PLAN
+source "$src/tests/tools/study_lib.sh"
+tiny_plan $tmp/plan.toml 20
 opts="--parallel 2 --workers-per-run 1 --port-base 7811"
 
 echo "== 1. bad plans"

@@ -426,6 +426,22 @@ int Submit(const at::StudyDir& study, const RunOptions& options, const SlurmOpti
   return 0;
 }
 
+// `PLAN --out DIR` makes a new study (its configurations resolved by ahhs-evolve), `--resume
+// DIR` opens one; anything else is a usage error.
+at::StudyDir OpenOrCreateStudy(const std::string& plan_file, const std::string& out_dir,
+                               const std::string& resume_dir) {
+  if (resume_dir.empty() == out_dir.empty())
+    throw CLI::ValidationError("give PLAN --out DIR for a new study, or --resume DIR");
+  if (!resume_dir.empty() && !plan_file.empty())
+    throw CLI::ValidationError("--resume takes no plan (the study keeps its own)");
+  if (!out_dir.empty() && plan_file.empty()) throw CLI::ValidationError("a new study needs a PLAN");
+  if (!resume_dir.empty()) return at::StudyDir::Open(resume_dir);
+  const at::StudyPlan plan = at::LoadStudyPlan(plan_file);
+  const std::string evolve = ahhs::arena::ExecutableDir() + "/ahhs-evolve";
+  return at::StudyDir::Create(out_dir, plan_file, plan,
+                              [&](const std::string& f) { return ResolveConfig(evolve, f); });
+}
+
 int Status(const at::StudyDir& study) {
   const auto runs = study.Runs();
   std::map<std::string, std::pair<int, int>> per_config;  // complete, total
@@ -578,37 +594,10 @@ int main(int argc, char** argv) {
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   try {
-    if (*run) {
-      if (resume_dir.empty() == out_dir.empty())
-        throw CLI::ValidationError("give PLAN --out DIR for a new study, or --resume DIR");
-      if (!resume_dir.empty() && !plan_file.empty())
-        throw CLI::ValidationError("--resume takes no plan (the study keeps its own)");
-      if (!out_dir.empty() && plan_file.empty())
-        throw CLI::ValidationError("a new study needs a PLAN");
-      if (!resume_dir.empty()) return RunStudy(at::StudyDir::Open(resume_dir), options);
-      const at::StudyPlan plan = at::LoadStudyPlan(plan_file);
-      const std::string evolve = ahhs::arena::ExecutableDir() + "/ahhs-evolve";
-      const at::StudyDir study = at::StudyDir::Create(
-          out_dir, plan_file, plan, [&](const std::string& f) { return ResolveConfig(evolve, f); });
-      return RunStudy(study, options);
-    }
+    if (*run) return RunStudy(OpenOrCreateStudy(plan_file, out_dir, resume_dir), options);
     if (*status) return Status(at::StudyDir::Open(study_dir));
     if (*submit) {
-      if (resume_dir.empty() == out_dir.empty())
-        throw CLI::ValidationError("give PLAN --out DIR for a new study, or --resume DIR");
-      if (!resume_dir.empty() && !plan_file.empty())
-        throw CLI::ValidationError("--resume takes no plan (the study keeps its own)");
-      if (!out_dir.empty() && plan_file.empty())
-        throw CLI::ValidationError("a new study needs a PLAN");
-      if (!resume_dir.empty()) {
-        const at::StudyDir study = at::StudyDir::Open(resume_dir);
-        if (!submit_options.from_export.empty()) study.Import(submit_options.from_export, nullptr);
-        return Submit(study, submit_options, slurm);
-      }
-      const at::StudyPlan plan = at::LoadStudyPlan(plan_file);
-      const std::string evolve = ahhs::arena::ExecutableDir() + "/ahhs-evolve";
-      const at::StudyDir study = at::StudyDir::Create(
-          out_dir, plan_file, plan, [&](const std::string& f) { return ResolveConfig(evolve, f); });
+      const at::StudyDir study = OpenOrCreateStudy(plan_file, out_dir, resume_dir);
       if (!submit_options.from_export.empty()) study.Import(submit_options.from_export, nullptr);
       return Submit(study, submit_options, slurm);
     }

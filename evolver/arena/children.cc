@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <stdexcept>
@@ -74,6 +75,23 @@ std::string ExecutableDir() {
   if (n <= 0) return ".";
   const std::string path(buf, static_cast<std::size_t>(n));
   return path.substr(0, path.rfind('/'));
+}
+
+int RunChildToEnd(const std::vector<std::string>& argv,
+                  const std::function<bool()>& stop_requested) {
+  const pid_t pid = SpawnChild(argv, false);
+  bool stopping = false;
+  int status = 0;
+  while (true) {
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid || (r < 0 && errno != EINTR)) break;
+    if (!stopping && stop_requested && stop_requested()) {
+      kill(pid, SIGTERM);
+      stopping = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status);
 }
 
 std::string DescribeExit(int status) {

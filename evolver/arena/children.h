@@ -6,6 +6,7 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,12 @@ void StopChildren(std::vector<pid_t>* pids, std::chrono::milliseconds grace);
 
 // Directory of the running executable (where the others are found: ahhs-sim, ahhs-worker, ...).
 std::string ExecutableDir();
+
+// Runs `argv` as a child (SpawnChild, output on ours) and waits for it: its exit code, or 128 +
+// the signal that killed it. While it runs, `stop_requested` (when given) is asked every 50 ms;
+// once true the child gets SIGTERM. Throws std::runtime_error when fork fails.
+int RunChildToEnd(const std::vector<std::string>& argv,
+                  const std::function<bool()>& stop_requested = {});
 
 // "exit status N" or "killed by signal N" for a waitpid status.
 std::string DescribeExit(int status);

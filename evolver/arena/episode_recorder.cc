@@ -176,6 +176,17 @@ void EpisodeRecorder::Observe(const DirectTick& t) {
     sim::KeepMovingBodies(&files_->bodies);
     log->Write(ch.SimState(), utime,
                sim::StateMessage(files_->bodies, spec_.episode, t.tick + 1, time));
+    // The running fitness, as the live monitor reports it after every state (viewers show it).
+    fitness_t f{};
+    f.utime = utime;
+    f.episode = spec_.episode;
+    f.tick = t.tick + 1;
+    f.sim_time = time;
+    f.fitness = sc.Fitness();
+    f.cost = sc.Cost();
+    f.status = fitness_t::OK;
+    f.states_seen = static_cast<std::int32_t>(t.tick + 1);
+    log->Write(ch.Fitness(), utime, f);
   }
 }
 

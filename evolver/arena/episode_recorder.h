@@ -1,8 +1,8 @@
 // Records a direct episode tick by tick (ahhs-replay, docs/analysis.md): an LCM log with what a
 // live arena would carry (per tick every module's SENSORS and HINGE, its TRACE, SIM/SCENE at the
-// sim's cadence, SIM/STATE after the tick, the final FITNESS), a per-tick CSV, and how often each
-// rule fired. Files are written to temporary names and moved into place by Commit(): an
-// interrupted replay leaves nothing half-written.
+// sim's cadence, SIM/STATE after the tick and the running FITNESS, the final FITNESS), a per-tick
+// CSV, and how often each rule fired. Files are written to temporary names and moved into place by
+// Commit(): an interrupted replay leaves nothing half-written.
 #pragma once
 
 #include <memory>

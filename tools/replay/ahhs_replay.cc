@@ -3,10 +3,13 @@
 //                                                          run's best), with its stored seed
 //   ahhs-replay --genome FILE --scenario ... --seed S       any genome
 // --log FILE writes an LCM log (per tick: every module's SENSORS, HINGE and TRACE, and
-// SIM/STATE; FITNESS at the end); --csv FILE the same trace as CSV, --rules-csv FILE how often
-// each rule triggered in each module. --mutants N evaluates N single mutants of the genome (the
-// paper's mutation neighbourhood) into --mutants-csv FILE. The replay uses the workers' direct
-// arena, so a stored fitness is reproduced to the bit; the output says so, or by how much not.
+// SIM/STATE and the running FITNESS; a final FITNESS); --csv FILE the same trace as CSV,
+// --rules-csv FILE how often each rule triggered in each module. --mutants N evaluates N single
+// mutants of the genome (the paper's mutation neighbourhood) into --mutants-csv FILE. The replay
+// uses the workers' direct arena, so a stored fitness is reproduced to the bit; the output says so,
+// or by how much not.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +19,7 @@
 #include <optional>
 
 #include "bus/cli.h"
+#include "evolver/arena/children.h"
 #include "evolver/arena/direct_arena.h"
 #include "evolver/arena/episode.h"
 #include "evolver/arena/episode_recorder.h"
@@ -107,6 +111,14 @@ int main(int argc, char** argv) {
   app.add_option("--mutation-profile", mutation_profile,
                  "operator of the mutants: paper or fine-doses (default: the run's, else paper)")
       ->check(CLI::IsMember({"paper", "fine-doses"}));
+  std::string video, filmstrip;
+  double video_from = 0, video_to = -1;
+  app.add_option("--video", video, "film the episode: an H.264 MP4, 1280x720, 25 fps (ahhs-view)");
+  app.add_option("--filmstrip", filmstrip, "8 frames across the episode in one PNG (ahhs-view)");
+  app.add_option("--from", video_from, "--video: start, simulated seconds")
+      ->check(CLI::Range(0.0, 1e6));
+  app.add_option("--to", video_to, "--video: end, simulated seconds (default: the end)")
+      ->check(CLI::Range(0.0, 1e6));
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   al::EpisodeSpec spec;
@@ -117,11 +129,14 @@ int main(int argc, char** argv) {
     if (run_dir.empty() == genome_file.empty())
       throw std::invalid_argument("give either a run directory or --genome FILE");
     const std::string exists = ahhs::cli::RefuseExisting(
-        {log_file, csv_file, rules_csv, mutants_csv, body_csv, robustness_csv}, overwrite);
+        {log_file, csv_file, rules_csv, mutants_csv, body_csv, robustness_csv, video, filmstrip},
+        overwrite);
     if (!exists.empty()) {
       std::cerr << "ahhs-replay: " << exists << '\n';
       return ahhs::cli::kExitUsage;
     }
+    if (video_to >= 0 && video_to <= video_from)
+      throw std::invalid_argument("--to must be after --from");
     if (mutants > 0 && mutants_csv.empty())
       throw std::invalid_argument("--mutants needs --mutants-csv FILE");
     if (!run_dir.empty()) {
@@ -180,10 +195,26 @@ int main(int argc, char** argv) {
   }
   spec.episode = 1;
 
+  const bool film = !video.empty() || !filmstrip.empty();
+  fs::path film_dir;
+  std::string film_log = log_file;
+  if (film && log_file.empty()) {
+    film_dir = fs::temp_directory_path() / ("ahhs-replay-" + std::to_string(getpid()));
+    fs::create_directories(film_dir);
+    film_log = (film_dir / "episode.lcm").string();
+  }
+  struct RemoveDir {
+    fs::path dir;
+    ~RemoveDir() {
+      std::error_code ec;
+      if (!dir.empty()) fs::remove_all(dir, ec);
+    }
+  } remove_film_dir{film_dir};
+
   try {
     const bool record =
-        !log_file.empty() || !csv_file.empty() || !rules_csv.empty() || !body_csv.empty();
-    al::EpisodeRecorder recorder(spec, log_file, csv_file, rules_csv, body_csv);
+        !film_log.empty() || !csv_file.empty() || !rules_csv.empty() || !body_csv.empty();
+    al::EpisodeRecorder recorder(spec, film_log, csv_file, rules_csv, body_csv);
     ahhs::sim::BehaviourSummary behaviour;
     std::vector<double> commands;
     const al::EpisodeResult result = al::RunDirectEpisode(spec, [&](const al::DirectTick& t) {
@@ -248,6 +279,23 @@ int main(int argc, char** argv) {
       }
     }
     std::printf("fitness: %s\n", Exact(fitness).c_str());
+    std::fflush(stdout);
+    for (const auto& [flag, out] :
+         {std::pair<std::string, std::string>{"--video", video},
+          std::pair<std::string, std::string>{"--filmstrip", filmstrip}}) {
+      if (out.empty()) continue;
+      std::vector<std::string> args{al::ExecutableDir() + "/ahhs-view", film_log, flag, out};
+      if (overwrite) args.push_back("--overwrite");
+      if (flag == "--video") {
+        args.insert(args.end(), {"--from", Exact(video_from)});
+        if (video_to >= 0) args.insert(args.end(), {"--to", Exact(video_to)});
+      }
+      if (const int code = al::RunChildToEnd(args); code != 0) {
+        std::cerr << "ahhs-replay: " << flag << " " << out << " failed (ahhs-view exit " << code
+                  << ")\n";
+        return ahhs::cli::kExitFailure;
+      }
+    }
   } catch (const std::exception& e) {
     std::cerr << "ahhs-replay: " << e.what() << '\n';
     return ahhs::cli::kExitFailure;

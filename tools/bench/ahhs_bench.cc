@@ -13,6 +13,7 @@
 #include <fstream>
 #include <memory>
 #include <set>
+#include <thread>
 #include <vector>
 
 #include "bus/cli.h"
@@ -206,8 +207,8 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
     void Add(const Way& a, const Way& b) { values.push_back(a.seconds.back() / b.seconds.back()); }
     double median() const { return Median(values); }
   };
-  Way physics, replay, direct, fused, memq, warm;
-  Ratio fused_ratio, fused_replay_ratio, memq_ratio, memq_replay_ratio, warm_ratio;
+  Way physics, replay, direct, fused, memq, warm, viewed;
+  Ratio fused_ratio, fused_replay_ratio, memq_ratio, memq_replay_ratio, warm_ratio, viewed_ratio;
   // Every fitness any run gave: one value, or the arenas disagree (a bug, not noise).
   std::set<double> fitnesses;
   al::EpisodeSpec memq_spec = spec;
@@ -215,11 +216,12 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   double start_s = std::nan("");
   std::string failure;
   std::unique_ptr<al::ProcessArena> processes;
+  const std::string options_arena = "AHHSBENCH" + std::to_string(getpid());
   try {  // sim, 5 modules and the fitness monitor as long-lived processes
     const auto t0 = Clock::now();
     al::ProcessArenaOptions options;
     options.url = url;
-    options.arena = "AHHSBENCH" + std::to_string(getpid());
+    options.arena = options_arena;
     options.num_modules = config.num_modules;
     processes = std::make_unique<al::ProcessArena>(options);
     start_s = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -247,6 +249,22 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
       }));
       warm_ratio.Add(warm, fused);
       if (!std::isnan(warm.fitness)) fitnesses.insert(warm.fitness);
+      // The same with ahhs-view following the arena (no page attached: the viewer's own cost,
+      // receiving the arena's states, fitness and clock and turning them into view events).
+      std::vector<pid_t> viewer{al::SpawnChild({al::ExecutableDir() + "/ahhs-view", "--lcm-url",
+                                                url, "--arena", options_arena, "--port", "0"},
+                                               true)};
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));  // subscribed
+      viewed.Add(Timed([&] {
+        al::EpisodeSpec next = spec;
+        next.episode = 1000 + r;
+        const auto result = processes->Run(next, [](std::string*) { return true; });
+        if (!result.ok) failure = result.error;
+        return result.ok ? result.fitness : std::nan("");
+      }));
+      al::StopChildren(&viewer, std::chrono::seconds(2));
+      viewed_ratio.Add(viewed, warm);
+      if (!std::isnan(viewed.fitness)) fitnesses.insert(viewed.fitness);
     }
   }
   processes.reset();
@@ -289,6 +307,8 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   std::printf("  multi-process arena (udpm)     %7.3f s   fitness %.17g   %.2fx fused\n",
               warm.median(), warm.fitness, warm_ratio.median());
   std::printf("    (starting its 7 processes    %7.3f s, once per arena)\n", start_s);
+  std::printf("  the same, watched by ahhs-view %7.3f s   fitness %.17g   %.3fx unwatched\n",
+              viewed.median(), viewed.fitness, viewed_ratio.median());
   std::printf("  ahhs-launch, whole run         %7.3f s   fitness %.17g   %.2fx fused\n",
               cold.first, cold.second, cold.first / fused.median());
   if (!std::isnan(cold.second)) fitnesses.insert(cold.second);

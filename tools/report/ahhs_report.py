@@ -458,6 +458,19 @@ def run_replay(bin_dir, argv):
     return proc.stdout
 
 
+def filmstrip(bin_dir, log, png, written):
+    """8 frames of the replayed episode in one PNG (ahhs-view with headless Chromium); what was
+    done, for summary.md."""
+    if not shutil.which("chromium"):
+        return "filmstrip: not made, chromium is not installed (tools/install-deps)"
+    proc = subprocess.run([os.path.join(bin_dir, "ahhs-view"), log, "--filmstrip", png,
+                           "--overwrite"], capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise ReportError("ahhs-view --filmstrip failed: " + (proc.stderr or proc.stdout).strip())
+    written.append(png)
+    return "filmstrip of the replay, 8 frames across the episode: `best-filmstrip.png`"
+
+
 REPORT_FILES = (".png", ".svg", ".dot", ".md", ".csv", ".json", ".lcm", ".mp4")
 
 
@@ -551,6 +564,7 @@ def report_runs(args):
             genome = json.load(f)
         edges = controller_graph(genome, info["parts"], args.out, written, task=first.task)
         check = [l for l in out.splitlines() if l.startswith("stored fitness")]
+        strip = filmstrip(bin_dir, log, os.path.join(args.out, "best-filmstrip.png"), written)
         md += ["", f"## The best controller of `{first.path}`", "",
                "Replayed with `ahhs-replay` (log: `replay.lcm`): " + (check[0] if check else out.strip()),
                "",
@@ -558,7 +572,8 @@ def report_runs(args):
                f"- rules that never trigger: {info['never']} of {info['rules']}; seldom (< 1 % of "
                f"ticks): {info['seldom']}",
                f"- controller graph: {edges} edges (one per rule part that triggered in the replay, "
-               "its width by the share of ticks)"]
+               "its width by the share of ticks)",
+               f"- {strip}"]
     md += ["", "## Figures", ""] + [f"- `{os.path.basename(p)}`" for p in written
                                     if p.endswith(".png")]
     summary = os.path.join(args.out, "summary.md")

@@ -149,7 +149,7 @@ class Chromium:
             time.sleep(0.1)
 
     def screenshot(self, fmt="png", quality=None):
-        params = {"format": fmt}
+        params = {"format": fmt, "optimizeForSpeed": True}
         if quality:
             params["quality"] = quality
         return base64.b64decode(self.call("Page.captureScreenshot", params)["data"])

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -178,17 +179,25 @@ int main(int argc, char** argv) {
 
   std::unique_ptr<av::WebServer> server;
   try {
-    server = std::make_unique<av::WebServer>(av::WebServer::Options{bind, port, web_root, three_js},
-                                             [&]() {
-                                               std::vector<std::string> g{hello.dump()};
-                                               std::lock_guard<std::mutex> lock(greeting_mutex);
-                                               g.insert(g.end(), fixed.begin(), fixed.end());
-                                               if (bridge) {
-                                                 auto s = bridge->Snapshot();
-                                                 g.insert(g.end(), s.begin(), s.end());
-                                               }
-                                               return g;
-                                             });
+    server = std::make_unique<av::WebServer>(
+        av::WebServer::Options{bind, port, web_root, three_js, !capture},
+        [&]() {
+          std::vector<std::string> g{hello.dump()};
+          std::lock_guard<std::mutex> lock(greeting_mutex);
+          g.insert(g.end(), fixed.begin(), fixed.end());
+          if (bridge) {
+            auto s = bridge->Snapshot();
+            g.insert(g.end(), s.begin(), s.end());
+          }
+          return g;
+        },
+        [&](const std::string& text) {
+          // {"type": "select", "module": M}: a page opened module M's panel.
+          const auto m = nlohmann::json::parse(text, nullptr, false);
+          if (bridge && m.is_object() && m.value("type", "") == "select" && m.contains("module") &&
+              m["module"].is_number_integer())
+            bridge->Want(m["module"].get<int>());
+        });
   } catch (const std::exception& e) {
     std::cerr << "ahhs-view: " << e.what() << '\n';
     return ahhs::cli::kExitFailure;
@@ -215,18 +224,19 @@ int main(int argc, char** argv) {
   std::fflush(stdout);
 
   if (bridge) {
-    // The bus is handled here; a second thread sends the newest events at --rate.
-    std::thread sender([&]() {
-      const auto period = std::chrono::duration<double>(1.0 / rate);
-      auto next = std::chrono::steady_clock::now();
-      while (!g_stop) {
-        next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(period);
-        std::this_thread::sleep_until(next);
-        for (const auto& m : bridge->Drain()) server->Broadcast(m);
+    // At --rate: take every message that arrived (the bus queues them), send what changed. The
+    // viewer wakes at its own pace, not once per message of the arena it watches.
+    const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(1.0 / rate));
+    auto next = std::chrono::steady_clock::now();
+    while (!g_stop) {
+      next = std::max(next + period, std::chrono::steady_clock::now() - period);  // no bursts
+      std::this_thread::sleep_until(next);
+      while (bus->Handle(std::chrono::microseconds(0)) > 0) {
       }
-    });
-    while (!g_stop) bus->Handle(std::chrono::milliseconds(100));
-    sender.join();
+      bridge->Maintain();
+      for (const auto& m : bridge->Drain()) server->Broadcast(m);
+    }
   } else if (follower) {
     while (!g_stop) {
       try {

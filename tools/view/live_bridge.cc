@@ -1,103 +1,125 @@
 #include "tools/view/live_bridge.h"
 
-#include <regex>
+#include <algorithm>
 
 #include "bus/channels.h"
-#include "bus/typed.h"
 
 namespace ahhs::view {
 
-namespace {
-
-std::string Escaped(const std::string& arena) {
-  return std::regex_replace(arena, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)");
-}
-
-}  // namespace
-
-LiveBridge::LiveBridge(bus::Bus& bus, const std::string& arena) : arena_(arena) {
+LiveBridge::LiveBridge(bus::Bus& bus, const std::string& arena) : bus_(bus), arena_(arena) {
   const bus::ArenaChannels ch(arena);
-  const std::string a = Escaped(arena);
   subscriptions_.push_back(bus::SubscribeTyped<sim_state_t>(
-      bus, a + "/SIM/(STATE|SCENE)",
-      [this](const std::string& channel, const sim_state_t& m) {
-        const bool scene =
-            channel.size() >= 5 && channel.compare(channel.size() - 5, 5, "SCENE") == 0;
-        if (!scene) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          ++states_;
-        }
-        Store(scene ? "scene" : "state", scene ? SceneEvent(m) : StateEvent(m));
+      bus, ch.SimState(),
+      [this](const std::string&, const sim_state_t& m) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (scene_.valid && scene_.msg.episode != m.episode) scene_ = {};  // a new episode
+        if (state_.valid && state_.msg.episode != m.episode) modules_.clear();
+        state_.Set(m);
+        ++states_;
+      },
+      &counters_));
+  subscriptions_.push_back(bus::SubscribeTyped<sim_state_t>(
+      bus, ch.SimScene(),
+      [this](const std::string&, const sim_state_t& m) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        scene_.Set(m);
       },
       &counters_));
   subscriptions_.push_back(bus::SubscribeTyped<fitness_t>(
       bus, ch.Fitness(),
-      [this](const std::string&, const fitness_t& m) { Store("fitness", FitnessEvent(m)); },
+      [this](const std::string&, const fitness_t& m) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        fitness_.Set(m);
+      },
       &counters_));
   subscriptions_.push_back(bus::SubscribeTyped<sim_clock_t>(
       bus, ch.SimClock(),
-      [this](const std::string&, const sim_clock_t& m) { Store("clock", ClockEvent(m)); },
-      &counters_));
-  auto module = [this](const Json& e) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const int id = e["module"].get<int>();
-    Json& into = modules_[id];
-    if (into.is_null() || into["tick"] != e["tick"]) into = e;  // a new tick: start afresh
-    for (const auto& kv : e.items()) into[kv.key()] = kv.value();
-    fresh_modules_[id] = true;
-  };
-  subscriptions_.push_back(bus::SubscribeTyped<module_sensors_t>(
-      bus, a + "/MODULE[0-9]+/SENSORS",
-      [module](const std::string&, const module_sensors_t& m) { module(SensorsEvent(m)); },
-      &counters_));
-  subscriptions_.push_back(bus::SubscribeTyped<hinge_command_t>(
-      bus, a + "/MODULE[0-9]+/HINGE",
-      [module](const std::string&, const hinge_command_t& m) { module(HingeEvent(m)); },
-      &counters_));
-  subscriptions_.push_back(bus::SubscribeTyped<module_trace_t>(
-      bus, a + "/MODULE[0-9]+/TRACE",
-      [module](const std::string&, const module_trace_t& m) { module(TraceEvent(m)); },
+      [this](const std::string&, const sim_clock_t& m) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        clock_.Set(m);
+      },
       &counters_));
 }
 
-void LiveBridge::Store(const char* kind, Json event) {
+void LiveBridge::Want(int module) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (std::string(kind) == "state") {
-    // A new episode: the old scene and modules are stale.
-    auto it = newest_.find("scene");
-    if (it != newest_.end() && it->second["episode"] != event["episode"]) newest_.erase(it);
+  if (module >= 0 && module < 1000) wanted_.insert(module);
+}
+
+void LiveBridge::Maintain() {
+  // A module's channels, by name, only once a page has asked for that module: the bus's kernel
+  // filter then passes the states and nothing per module, so watching costs the arena's machine
+  // two datagrams a tick (docs/performance.md).
+  std::set<int> wanted;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    wanted = wanted_;
   }
-  newest_[kind] = std::move(event);
-  fresh_[kind] = true;
+  const bus::ArenaChannels ch(arena_);
+  for (int i : wanted) {
+    if (subscribed_.count(i)) continue;
+    subscribed_.insert(i);
+    subscriptions_.push_back(bus::SubscribeTyped<module_sensors_t>(
+        bus_, ch.Sensors(i),
+        [this](const std::string&, const module_sensors_t& m) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          modules_[m.module].sensors.Set(m);
+        },
+        &counters_));
+    subscriptions_.push_back(bus::SubscribeTyped<hinge_command_t>(
+        bus_, ch.Hinge(i),
+        [this](const std::string&, const hinge_command_t& m) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          modules_[m.module].hinge.Set(m);
+        },
+        &counters_));
+    subscriptions_.push_back(bus::SubscribeTyped<module_trace_t>(
+        bus_, ch.Trace(i),
+        [this](const std::string&, const module_trace_t& m) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          modules_[m.module].trace.Set(m);
+        },
+        &counters_));
+  }
+}
+
+Json LiveBridge::ModuleEvent(const ModuleNewest& m) {
+  // The module's newest sensors, commands and trace, merged (each may be of its own tick).
+  Json e;
+  auto merge = [&e](const Json& part) {
+    for (const auto& kv : part.items()) e[kv.key()] = kv.value();
+  };
+  if (m.sensors.valid) merge(SensorsEvent(m.sensors.msg));
+  if (m.hinge.valid) merge(HingeEvent(m.hinge.msg));
+  if (m.trace.valid) merge(TraceEvent(m.trace.msg));
+  return e;
 }
 
 std::vector<std::string> LiveBridge::Drain() {
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<std::string> out;
   // Scene before state, state before the modules and fitness of its tick.
-  for (const char* kind : {"clock", "scene", "state"}) {
-    if (fresh_[kind] && newest_.count(kind)) out.push_back(newest_[kind].dump());
-    fresh_[kind] = false;
+  if (clock_.fresh) out.push_back(ClockEvent(clock_.msg).dump());
+  if (scene_.fresh) out.push_back(SceneEvent(scene_.msg).dump());
+  if (state_.fresh) out.push_back(StateEvent(state_.msg).dump());
+  clock_.fresh = scene_.fresh = state_.fresh = false;
+  for (auto& [id, m] : modules_) {
+    if (m.sensors.fresh || m.hinge.fresh || m.trace.fresh) out.push_back(ModuleEvent(m).dump());
+    m.sensors.fresh = m.hinge.fresh = m.trace.fresh = false;
   }
-  for (auto& kv : fresh_modules_) {
-    if (kv.second) out.push_back(modules_[kv.first].dump());
-    kv.second = false;
-  }
-  if (fresh_["fitness"] && newest_.count("fitness")) out.push_back(newest_["fitness"].dump());
-  fresh_["fitness"] = false;
+  if (fitness_.fresh) out.push_back(FitnessEvent(fitness_.msg).dump());
+  fitness_.fresh = false;
   return out;
 }
 
 std::vector<std::string> LiveBridge::Snapshot() const {
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<std::string> out;
-  for (const char* kind : {"clock", "scene", "state"}) {
-    auto it = newest_.find(kind);
-    if (it != newest_.end()) out.push_back(it->second.dump());
-  }
-  for (const auto& kv : modules_) out.push_back(kv.second.dump());
-  auto it = newest_.find("fitness");
-  if (it != newest_.end()) out.push_back(it->second.dump());
+  if (clock_.valid) out.push_back(ClockEvent(clock_.msg).dump());
+  if (scene_.valid) out.push_back(SceneEvent(scene_.msg).dump());
+  if (state_.valid) out.push_back(StateEvent(state_.msg).dump());
+  for (const auto& kv : modules_) out.push_back(ModuleEvent(kv.second).dump());
+  if (fitness_.valid) out.push_back(FitnessEvent(fitness_.msg).dump());
   return out;
 }
 

@@ -2,14 +2,15 @@
 
 #include <civetweb.h>
 
+#include <cstdio>
 #include <filesystem>
 
 namespace ahhs::view {
 
 namespace fs = std::filesystem;
 
-WebServer::WebServer(const Options& options, Greeting greeting)
-    : options_(options), greeting_(std::move(greeting)) {
+WebServer::WebServer(const Options& options, Greeting greeting, OnText on_text)
+    : options_(options), greeting_(std::move(greeting)), on_text_(std::move(on_text)) {
   if (!fs::is_regular_file(fs::path(options_.web_root) / "index.html"))
     throw WebServerError("the viewer's page is not in " + options_.web_root +
                          " (index.html missing; --web-root)");
@@ -85,17 +86,27 @@ void WebServer::OnReady(mg_connection* conn, void* self) {
   for (const auto& m : greeting)
     mg_websocket_write(conn, MG_WEBSOCKET_OPCODE_TEXT, m.data(), m.size());
   s->pages_.insert(conn);
+  if (!s->options_.announce) return;
+  std::printf("ahhs-view: a page connected (%zu watching)\n", s->pages_.size());
+  std::fflush(stdout);
 }
 
-int WebServer::OnData(mg_connection*, int bits, char*, std::size_t, void*) {
-  // Pages send nothing the server needs; keep the connection unless the page closes it.
-  return (bits & 0x0f) == MG_WEBSOCKET_OPCODE_CONNECTION_CLOSE ? 0 : 1;
+int WebServer::OnData(mg_connection*, int bits, char* data, std::size_t size, void* self) {
+  const int opcode = bits & 0x0f;
+  if (opcode == MG_WEBSOCKET_OPCODE_CONNECTION_CLOSE) return 0;
+  auto* s = static_cast<WebServer*>(self);
+  if (opcode == MG_WEBSOCKET_OPCODE_TEXT && s->on_text_ && size <= 4096)
+    s->on_text_(std::string(data, size));
+  return 1;
 }
 
 void WebServer::OnClose(const mg_connection* conn, void* self) {
   auto* s = static_cast<WebServer*>(self);
   std::lock_guard<std::mutex> lock(s->mutex_);
-  s->pages_.erase(const_cast<mg_connection*>(conn));
+  if (s->pages_.erase(const_cast<mg_connection*>(conn)) == 0) return;  // not a page (HTTP)
+  if (!s->options_.announce) return;
+  std::printf("ahhs-view: a page left (%zu watching)\n", s->pages_.size());
+  std::fflush(stdout);
 }
 
 int WebServer::ServeThree(mg_connection* conn, void* self) {

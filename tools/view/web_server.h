@@ -29,12 +29,16 @@ class WebServer {
     int port = 8080;  // 0: any free port
     std::string web_root;
     std::string three_js;  // path of three.min.js
+    bool announce = true;  // print a line on stdout when a page connects or leaves
   };
   // Messages a page gets first when it connects (the current scene, recording, ...).
   using Greeting = std::function<std::vector<std::string>()>;
 
+  // What a page sends (text messages), handed over on civetweb's thread.
+  using OnText = std::function<void(const std::string&)>;
+
   // Throws WebServerError (port in use, bad address, missing files).
-  WebServer(const Options& options, Greeting greeting);
+  WebServer(const Options& options, Greeting greeting, OnText on_text = {});
   ~WebServer();
   WebServer(const WebServer&) = delete;
   WebServer& operator=(const WebServer&) = delete;
@@ -54,6 +58,7 @@ class WebServer {
 
   Options options_;
   Greeting greeting_;
+  OnText on_text_;
   mg_context* ctx_ = nullptr;
   int port_ = 0;
   mutable std::mutex mutex_;  // guards pages_ and every write to a page

@@ -325,6 +325,9 @@ function pick(e) {
 }
 function select(module) {
   selected = module;
+  // A live viewer sends a module's sensors and commands only to those who ask (it listens to
+  // them only then: watching must not cost the arena).
+  if (module !== null && mode === 'live' && socket && socket.readyState === 1) socket.send(JSON.stringify({type: 'select', module: module}));
   document.getElementById('panel').hidden = module === null;
   if (shown) redraw();
 }
@@ -378,10 +381,13 @@ function updatePanel() {
   const hinge = m && m.g !== undefined ? ', hinge ' + (m.g * 180 / Math.PI).toFixed(1) + '\u00b0' : '';
   document.getElementById('panel-title').textContent = (isPendulum ? 'compartment ' : 'module ') + selected + hinge;
   const hist = moduleHistory(selected);
-  plot('plot-sensors', 'sensors', seriesOf(hist, 's'), 0, 1);
-  plot('plot-hormones', hist.some((h) => h.m.h) ? 'hormones' : 'hormones (only in ahhs-replay logs)', seriesOf(hist, 'h'), 0, 1);
-  plot('plot-actuators', 'actuators', seriesOf(hist, 'a'), -1, 1);
+  const series = {s: seriesOf(hist, 's'), h: seriesOf(hist, 'h'), a: seriesOf(hist, 'a')};
+  plot('plot-sensors', 'sensors', series.s, 0, 1);
+  plot('plot-hormones', hist.some((h) => h.m.h) ? 'hormones' : 'hormones (only in ahhs-replay logs)', series.h, 0, 1);
+  plot('plot-actuators', 'actuators', series.a, -1, 1);
+  plotted = {sensors: series.s.length, hormones: series.h.length, actuators: series.a.length, points: hist.length};
 }
+let plotted = null;  // what the module panel drew (tests)
 
 // ---- HUD -------------------------------------------------------------------------------------
 let title = 'ahhs-view';
@@ -532,9 +538,13 @@ function onMessage(e) {
     if (live.frames.length) { render(); readyResolve(); }
   }
 }
+let socket = null;
 function connect() {
-  const ws = new WebSocket((location.protocol === 'https:' ? 'wss://' : 'ws://') + location.host + '/ws');
-  ws.onopen = () => { connected = true; };
+  const ws = socket = new WebSocket((location.protocol === 'https:' ? 'wss://' : 'ws://') + location.host + '/ws');
+  ws.onopen = () => {
+    connected = true;
+    if (selected !== null && mode === 'live') ws.send(JSON.stringify({type: 'select', module: selected}));
+  };
   ws.onmessage = (m) => onMessage(JSON.parse(m.data));
   ws.onclose = () => {
     connected = false;
@@ -575,6 +585,8 @@ window.ahhs = {
     playing: playing,
     speed: speed,
     title: document.getElementById('title').textContent,
+    selected: selected,
+    panel: document.getElementById('panel').hidden ? null : plotted,
     run_generation: rec && rec.run_generation !== undefined ? rec.run_generation : null,
     colours: moving.map((m) => '#' + m.material.color.getHexString()),
   }),
@@ -587,5 +599,12 @@ window.ahhs = {
   step: (n) => { step(n); return window.ahhs.stats(); },
   select: select,
   screenPos: screenPosOf,
+  // A click on the canvas at page pixel (x, y), as a user's (picking a module, or nothing).
+  click: (x, y) => {
+    const c = renderer.domElement;
+    c.dispatchEvent(new PointerEvent('pointerdown', {clientX: x, clientY: y, bubbles: true}));
+    window.dispatchEvent(new PointerEvent('pointerup', {clientX: x, clientY: y, bubbles: true}));
+    return window.ahhs.stats();
+  },
   setSize: (w, h) => { renderer.setSize(w, h); camera.aspect = w / h; camera.updateProjectionMatrix(); render(); },
 };

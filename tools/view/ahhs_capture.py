@@ -133,7 +133,9 @@ class Chromium:
         return r["result"].get("value")
 
     def open(self, url, wait="window.ahhs && ahhs.isReady()"):
-        self.call("Page.navigate", {"url": url})
+        nav = self.call("Page.navigate", {"url": url})
+        if nav.get("errorText"):
+            raise CaptureError("cannot load %s: %s" % (url, nav["errorText"]))
         deadline = time.monotonic() + self.timeout
         while True:
             try:

@@ -256,15 +256,17 @@ function frameCamera(f, jump) {
   if (!f || !bodyMeta) return;
   if (isPendulum) {
     // Side-on, framing the walls and the whole circle of the bob around the pivot.
-    let halfWidth = 1.2;
-    for (const m of statics) halfWidth = Math.max(halfWidth, Math.abs(m.position.x) + 0.1);
+    // The cart can reach a wall, and the bob swings a rod's length beyond it.
     const i = bodyMeta.shape.indexOf(SHAPE_SPHERE);
     const length = Math.hypot(f.pose[7 * i] - f.pose[0], f.pose[7 * i + 2] - f.pose[2]);
+    let walls = 1;
+    for (const m of statics) walls = Math.max(walls, Math.abs(m.position.x));
+    const halfWidth = walls + length + 0.05;
     const t = Math.tan((camera.fov / 2) * Math.PI / 180);
     const d = 1.1 * Math.max((length + 0.08) / t, halfWidth / (t * camera.aspect));
     camTarget.set(0, 0, 0);
     camOffset = new THREE.Vector3(0, -d, 0.0001);
-    rail.scale.set(2 * halfWidth - 0.2, 1, 1);
+    rail.scale.set(2 * walls, 1, 1);
   } else {
     let extent = 0;
     const c = organismCentre(f);
@@ -378,7 +380,7 @@ function seriesOf(hist, key) {
 function updatePanel() {
   if (selected === null || capture) return;
   const m = shown && shown.mods ? shown.mods[selected] : null;
-  const hinge = m && m.g !== undefined ? ', hinge ' + (m.g * 180 / Math.PI).toFixed(1) + '\u00b0' : '';
+  const hinge = m && m.g !== undefined && !isPendulum ? ', hinge ' + (m.g * 180 / Math.PI).toFixed(1) + '\u00b0' : '';
   document.getElementById('panel-title').textContent = (isPendulum ? 'compartment ' : 'module ') + selected + hinge;
   const hist = moduleHistory(selected);
   const series = {s: seriesOf(hist, 's'), h: seriesOf(hist, 'h'), a: seriesOf(hist, 'a')};

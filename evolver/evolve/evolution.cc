@@ -23,22 +23,16 @@ std::string CheckEvolveConfig(const EvolveConfig& c) {
 }
 
 json ConfigToJson(const EvolveConfig& c) {
-  return json{{"scenario", sim::ScenarioName(c.scenario.kind)},
-              {"joints", sim::JointsName(c.scenario.joints)},
-              {"modules", c.scenario.num_modules},
-              {"duration", c.scenario.duration},
-              {"variant", modules::VariantName(c.variant)},
-              {"hormones", c.hormones},
-              {"rules", c.rules},
-              {"population", c.ga.population},
-              {"generations", c.ga.generations},
-              {"elitism", c.ga.elitism},
-              {"mutation_rate", c.ga.mutation.gene_rate},
-              {"mutation_max_change", c.ga.mutation.max_change},
-              {"mutation_profile", modules::MutationProfileName(c.ga.mutation.profile)},
-              {"crossover_rate", c.ga.crossover_rate},
-              {"selection_epsilon", c.ga.selection_epsilon},
-              {"seed", c.seed}};
+  json doc{{"scenario", sim::ScenarioName(c.scenario.kind)},
+           {"joints", sim::JointsName(c.scenario.joints)},
+           {"modules", c.scenario.num_modules},
+           {"duration", c.scenario.duration},
+           {"variant", modules::VariantName(c.variant)},
+           {"hormones", c.hormones},
+           {"rules", c.rules},
+           {"seed", c.seed}};
+  GaParamsToJson(c.ga, &doc);
+  return doc;
 }
 
 EvolveConfig ConfigFromJson(const json& doc) {
@@ -54,17 +48,7 @@ EvolveConfig ConfigFromJson(const json& doc) {
     c.variant = variant == "ahhs1" ? modules::Variant::kAhhs1 : modules::Variant::kAhhs2;
     c.hormones = doc.at("hormones").get<int>();
     c.rules = doc.at("rules").get<int>();
-    c.ga.population = doc.at("population").get<int>();
-    c.ga.generations = doc.at("generations").get<int>();
-    c.ga.elitism = doc.at("elitism").get<int>();
-    c.ga.mutation.gene_rate = doc.at("mutation_rate").get<double>();
-    c.ga.mutation.max_change = doc.at("mutation_max_change").get<double>();
-    // Runs stored before profiles existed mutated with what is now "fine-doses".
-    c.ga.mutation.profile = modules::ParseMutationProfile(
-        doc.value("mutation_profile",
-                  std::string(modules::MutationProfileName(modules::MutationProfile::kFineDoses))));
-    c.ga.crossover_rate = doc.at("crossover_rate").get<double>();
-    c.ga.selection_epsilon = doc.at("selection_epsilon").get<double>();
+    c.ga = GaParamsFromJson(doc);
     c.seed = doc.at("seed").get<std::uint64_t>();
   } catch (const json::exception& e) {
     throw std::invalid_argument(std::string("run config: ") + e.what());

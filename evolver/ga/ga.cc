@@ -10,6 +10,33 @@ namespace ahhs::evolver {
 using modules::Genome;
 using modules::Rng;
 
+void GaParamsToJson(const GaParams& p, nlohmann::json* doc) {
+  (*doc)["population"] = p.population;
+  (*doc)["generations"] = p.generations;
+  (*doc)["elitism"] = p.elitism;
+  (*doc)["mutation_rate"] = p.mutation.gene_rate;
+  (*doc)["mutation_max_change"] = p.mutation.max_change;
+  (*doc)["mutation_profile"] = modules::MutationProfileName(p.mutation.profile);
+  (*doc)["crossover_rate"] = p.crossover_rate;
+  (*doc)["selection_epsilon"] = p.selection_epsilon;
+}
+
+GaParams GaParamsFromJson(const nlohmann::json& doc) {
+  GaParams p;
+  p.population = doc.at("population").get<int>();
+  p.generations = doc.at("generations").get<int>();
+  p.elitism = doc.at("elitism").get<int>();
+  p.mutation.gene_rate = doc.at("mutation_rate").get<double>();
+  p.mutation.max_change = doc.at("mutation_max_change").get<double>();
+  // Runs stored before profiles existed mutated with what is now "fine-doses".
+  p.mutation.profile = modules::ParseMutationProfile(
+      doc.value("mutation_profile",
+                std::string(modules::MutationProfileName(modules::MutationProfile::kFineDoses))));
+  p.crossover_rate = doc.at("crossover_rate").get<double>();
+  p.selection_epsilon = doc.at("selection_epsilon").get<double>();
+  return p;
+}
+
 std::string CheckGaParams(const GaParams& p) {
   if (p.population < 2) return "population must be at least 2";
   if (p.generations < 1) return "generations must be at least 1";

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,12 @@ struct GaParams {
 
 // "" or a message naming the bad parameter.
 std::string CheckGaParams(const GaParams& params);
+
+// The parameters as a run's config stores them, flat keys: population, generations, elitism,
+// mutation_rate, mutation_max_change, mutation_profile, crossover_rate, selection_epsilon.
+void GaParamsToJson(const GaParams& params, nlohmann::json* doc);
+// Throws nlohmann::json::exception for a missing or mistyped key.
+GaParams GaParamsFromJson(const nlohmann::json& doc);
 
 // One job of a generation: evaluate `genome` with evaluation seed `seed`.
 struct EvaluationJob {

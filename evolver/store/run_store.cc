@@ -84,6 +84,7 @@ class Statement {
     sqlite3_clear_bindings(stmt_);
   }
   std::int64_t Int(int col) const { return sqlite3_column_int64(stmt_, col); }
+  bool IsNull(int col) const { return sqlite3_column_type(stmt_, col) == SQLITE_NULL; }
   double Real(int col) const { return sqlite3_column_double(stmt_, col); }
   std::string Text(int col) const {
     const unsigned char* t = sqlite3_column_text(stmt_, col);
@@ -290,10 +291,12 @@ void RunStore::LoadRunTable() {
   while (get.Step()) values[get.Text(0)] = get.Text(1);
   if (values.value("format", "") != kFormatName)
     throw RunStoreError("the database is not an ahhs run");
-  if (values.value("format_version", "") != std::to_string(kFormatVersion))
-    throw RunStoreError("run format version " + values.value("format_version", "?") +
-                        " is not supported (this build reads version " +
+  const std::string version = values.value("format_version", "");
+  if (version != "1" && version != std::to_string(kFormatVersion))
+    throw RunStoreError("run format version " + (version.empty() ? "?" : version) +
+                        " is not supported (this build reads versions 1 to " +
                         std::to_string(kFormatVersion) + ")");
+  format_version_ = std::stoi(version);
   run_id_ = values.value("run_id", "");
   physics_ = values.value("physics", "");
   try {
@@ -328,6 +331,55 @@ IndividualRecord RunStore::LoadIndividual(int generation, int index) const {
   return found.front();
 }
 
+std::uint64_t RunStore::BreedingSeed() const {
+  // The seed the evolution bred with: its config's (RunEvolution takes the config's seed).
+  try {
+    return config_.at("seed").get<std::uint64_t>();
+  } catch (const std::exception& e) {
+    throw RunStoreError(dir_ + ": run config: " + e.what());
+  }
+}
+
+bool RunStore::StoresInFull(int generation) const {
+  return format_version_ < 2 || generation % kGenomeCheckpoint == 0;
+}
+
+const std::vector<modules::Genome>& RunStore::Rederive(int generation) const {
+  if (rederived_generation_ == generation) return rederived_;
+  // The newest generation at or before `generation` whose genomes are all stored.
+  Statement full(db_,
+                 "SELECT MAX(generation) FROM generations WHERE generation <= ? AND generation "
+                 "NOT IN (SELECT generation FROM individuals WHERE genome = '')");
+  full.Bind(1, static_cast<std::int64_t>(generation));
+  if (!full.Step() || full.IsNull(0))
+    throw RunStoreError(dir_ + ": no generation stored in full before generation " +
+                        std::to_string(generation));
+  const int start = static_cast<int>(full.Int(0));
+  GaParams ga;
+  try {
+    ga = GaParamsFromJson(config_);
+  } catch (const std::exception& e) {
+    throw RunStoreError(dir_ + ": run config: " + e.what());
+  }
+  std::vector<modules::Genome> population;
+  std::vector<double> fitness;
+  for (const auto& r : LoadIndividuals(start, -1)) {
+    population.push_back(r.genome);
+    fitness.push_back(r.evaluation.fitness);
+  }
+  for (int g = start + 1; g <= generation; ++g) {
+    population = Breed(population, fitness, ga, BreedingSeed(), g);
+    if (g == generation) break;
+    fitness.clear();
+    Statement get(db_, "SELECT fitness FROM individuals WHERE generation = ? ORDER BY idx");
+    get.Bind(1, static_cast<std::int64_t>(g));
+    while (get.Step()) fitness.push_back(get.Real(0));
+  }
+  rederived_ = std::move(population);
+  rederived_generation_ = generation;
+  return rederived_;
+}
+
 std::vector<IndividualRecord> RunStore::LoadIndividuals(int generation, int index) const {
   std::vector<IndividualRecord> out;
   Statement get(db_,
@@ -341,9 +393,20 @@ std::vector<IndividualRecord> RunStore::LoadIndividuals(int generation, int inde
     IndividualRecord r;
     r.generation = generation;
     r.index = static_cast<int>(get.Int(0));
+    const std::string text = get.Text(1);
     try {
-      r.genome = modules::ParseGenome(get.Text(1), "generation " + std::to_string(generation) +
-                                                       " individual " + std::to_string(r.index));
+      if (text.empty()) {
+        const auto& bred = Rederive(generation);
+        if (static_cast<std::size_t>(r.index) >= bred.size())
+          throw std::runtime_error("generation " + std::to_string(generation) +
+                                   " was bred with fewer individuals than are stored");
+        r.genome = bred[static_cast<std::size_t>(r.index)];
+      } else {
+        r.genome = modules::ParseGenome(text, "generation " + std::to_string(generation) +
+                                                  " individual " + std::to_string(r.index));
+      }
+    } catch (const RunStoreError&) {
+      throw;
     } catch (const std::exception& e) {
       throw RunStoreError(dir_ + ": " + e.what());
     }
@@ -352,7 +415,10 @@ std::vector<IndividualRecord> RunStore::LoadIndividuals(int generation, int inde
                   static_cast<unsigned long long>(modules::GenomeHash(r.genome)));
     if (get.Text(2) != hash)
       throw RunStoreError(dir_ + ": generation " + std::to_string(generation) + " individual " +
-                          std::to_string(r.index) + ": the genome does not match its hash");
+                          std::to_string(r.index) +
+                          (text.empty() ? ": the genome bred again does not match its hash (this "
+                                          "build's variation differs from the run's)"
+                                        : ": the genome does not match its hash"));
     r.elite = get.Int(3) != 0;
     r.eval_seed = FromSql(get.Int(4));
     r.evaluation.fitness = get.Real(5);
@@ -413,7 +479,8 @@ void RunStore::CommitGeneration(const GenerationRecord& record,
                     static_cast<unsigned long long>(modules::GenomeHash(r.genome)));
       add.Bind(1, static_cast<std::int64_t>(record.generation))
           .Bind(2, static_cast<std::int64_t>(r.index))
-          .Bind(3, modules::GenomeToJson(r.genome).dump())
+          .Bind(3, StoresInFull(record.generation) ? modules::GenomeToJson(r.genome).dump()
+                                                   : std::string())
           .Bind(4, std::string(hash))
           .Bind(5, static_cast<std::int64_t>(r.elite ? 1 : 0))
           .Bind(6, ToSql(r.eval_seed))
@@ -431,6 +498,60 @@ void RunStore::CommitGeneration(const GenerationRecord& record,
     throw;
   }
   Export();
+}
+
+std::uint64_t RunStore::Compact() {
+  if (lock_fd_ < 0) throw RunStoreError(dir_ + ": compacting needs the run opened for writing");
+  if (format_version_ >= 2) return 0;
+  const fs::path db_path = fs::path(dir_) / kDatabaseName;
+  std::error_code ec;
+  const auto before = fs::file_size(db_path, ec);
+  GaParams ga;
+  try {
+    ga = GaParamsFromJson(config_);
+  } catch (const std::exception& e) {
+    throw RunStoreError(dir_ + ": run config: " + e.what());
+  }
+  // First check that every generation is what breeding its stored parents gives (so that
+  // version 2 can breed it again from a checkpoint); only then drop anything.
+  const int last = LastGeneration();
+  std::vector<IndividualRecord> parents =
+      last >= 0 ? LoadIndividuals(0, -1) : std::vector<IndividualRecord>{};
+  for (int g = 1; g <= last; ++g) {
+    std::vector<modules::Genome> genomes;
+    std::vector<double> fitness;
+    for (const auto& r : parents) {
+      genomes.push_back(r.genome);
+      fitness.push_back(r.evaluation.fitness);
+    }
+    const std::vector<modules::Genome> bred = Breed(genomes, fitness, ga, BreedingSeed(), g);
+    parents = LoadIndividuals(g, -1);
+    bool same = bred.size() == parents.size();
+    for (std::size_t i = 0; same && i < bred.size(); ++i)
+      same = modules::GenomeHash(bred[i]) == modules::GenomeHash(parents[i].genome);
+    if (!same)
+      throw RunStoreError(dir_ + ": generation " + std::to_string(g) +
+                          " is not what breeding generation " + std::to_string(g - 1) +
+                          " gives with this build (a run of another build's variation): left "
+                          "as it is");
+  }
+  Exec("BEGIN IMMEDIATE");
+  try {
+    Statement drop(db_, "UPDATE individuals SET genome = '' WHERE generation % ? != 0");
+    drop.Bind(1, static_cast<std::int64_t>(kGenomeCheckpoint)).Run();
+    Statement version(db_, "UPDATE run SET value = '2' WHERE key = 'format_version'");
+    version.Run();
+    Exec("COMMIT");
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+  format_version_ = 2;
+  rederived_generation_ = -1;
+  Exec("VACUUM");
+  sqlite3_exec(db_, "PRAGMA wal_checkpoint(TRUNCATE)", nullptr, nullptr, nullptr);  // WAL mode
+  const auto after = fs::file_size(db_path, ec);
+  return before > after ? before - after : 0;
 }
 
 IndividualRecord RunStore::Best() const {

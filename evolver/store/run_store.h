@@ -54,7 +54,13 @@ enum class StoreAccess { kRead, kWrite };
 
 class RunStore {
  public:
-  static constexpr int kFormatVersion = 1;
+  // Version 2 stores a generation's genomes in full only every kGenomeCheckpoint generations
+  // (0, 20, 40, ...); the others keep each genome's hash, and reading one re-derives its
+  // generation by breeding from the full generation before it (the GA is a pure function of a
+  // generation's genomes and fitness and the run seed: evolver/ga/ga.h), checked against the
+  // hashes. Version 1 (every genome in full) is read and resumed as it is.
+  static constexpr int kFormatVersion = 2;
+  static constexpr int kGenomeCheckpoint = 20;
 
   // Makes a new run directory. Refuses an existing non-empty directory unless `overwrite`, in
   // which case the old run's files are removed first. `config` and `physics` (the version of
@@ -95,6 +101,13 @@ class RunStore {
   void CommitGeneration(const GenerationRecord& record,
                         const std::vector<IndividualRecord>& individuals);
 
+  // Brings a version-1 run to version 2 (store opened kWrite): after checking that every
+  // generation is exactly what breeding the one before gives (a run of another build's
+  // variation is refused and left as it was), the genomes of the generations that are not
+  // checkpoints are dropped and the database vacuumed. Returns the bytes saved.
+  std::uint64_t Compact();
+  int format_version() const { return format_version_; }
+
   // Rewrites generations.csv, best/gen-NNNN.json and best.json from the database.
   void Export() const;
 
@@ -106,6 +119,10 @@ class RunStore {
   void Exec(const char* sql) const;
   void LoadRunTable();
   std::vector<IndividualRecord> LoadIndividuals(int generation, int index) const;  // -1: all
+  // Every genome of a generation stored by hash only, bred again from the newest full one.
+  const std::vector<modules::Genome>& Rederive(int generation) const;
+  bool StoresInFull(int generation) const;
+  std::uint64_t BreedingSeed() const;
 
   std::string dir_;
   sqlite3* db_ = nullptr;
@@ -114,6 +131,9 @@ class RunStore {
   std::uint64_t run_seed_ = 0;
   nlohmann::json config_;
   std::string physics_;
+  int format_version_ = kFormatVersion;
+  mutable int rederived_generation_ = -1;  // cache of Rederive
+  mutable std::vector<modules::Genome> rederived_;
 };
 
 }  // namespace ahhs::evolver

@@ -3,6 +3,7 @@
 // match the database. And RunEvolution resumed after a stop equals an uninterrupted run.
 #include "evolver/store/run_store.h"
 
+#include <sqlite3.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -164,6 +165,112 @@ TEST_CASE("a run stopped after any generation and resumed equals the uninterrupt
     CHECK(evolver::RunEvolution(*resumed, evolver::ConfigFromJson(resumed->config()), f, 2));
     CHECK(DumpRun(*resumed) == expected);
   }
+}
+
+// Raw SQL on a run database (the store's own API never writes a format-1 run any more).
+void Sql(const std::string& dir, const std::string& sql) {
+  sqlite3* db = nullptr;
+  REQUIRE(sqlite3_open((dir + "/run.sqlite").c_str(), &db) == SQLITE_OK);
+  REQUIRE(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr) == SQLITE_OK);
+  sqlite3_close(db);
+}
+
+TEST_CASE("format 2 keeps every 20th generation's genomes and breeds the others again exactly") {
+  TempDir tmp;
+  auto config = SmallConfig();
+  config.ga.generations = 50;
+  HashFitness f;
+  auto whole = RunStore::Create(tmp.path + "/whole", "w", 123, evolver::ConfigToJson(config),
+                                "test-physics", false);
+  REQUIRE(evolver::RunEvolution(*whole, config, f, 1));
+  CHECK(whole->format_version() == 2);
+  const std::string expected = DumpRun(*whole);  // every genome read back, checked by its hash
+  whole.reset();
+  // Only generations 0, 20 and 40 hold genomes.
+  sqlite3* db = nullptr;
+  REQUIRE(sqlite3_open((tmp.path + "/whole/run.sqlite").c_str(), &db) == SQLITE_OK);
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db,
+                     "SELECT group_concat(DISTINCT generation) FROM individuals WHERE genome != ''",
+                     -1, &st, nullptr);
+  REQUIRE(sqlite3_step(st) == SQLITE_ROW);
+  CHECK(std::string(reinterpret_cast<const char*>(sqlite3_column_text(st, 0))) == "0,20,40");
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+
+  // Stopped anywhere (before, at and after a checkpoint) and resumed: the same run.
+  for (int stop_after : {19, 20, 33}) {
+    const std::string dir = tmp.path + "/part" + std::to_string(stop_after);
+    {
+      auto part =
+          RunStore::Create(dir, "p", 123, evolver::ConfigToJson(config), "test-physics", false);
+      evolver::EvolutionHooks hooks;
+      int committed = 0;
+      hooks.on_generation = [&](const evolver::GenerationRecord&) { ++committed; };
+      hooks.stop = [&] { return committed > stop_after; };
+      CHECK_FALSE(evolver::RunEvolution(*part, config, f, 1, hooks));
+    }
+    auto resumed = RunStore::Open(dir);
+    CHECK(evolver::RunEvolution(*resumed, config, f, 2));
+    CHECK(DumpRun(*resumed) == expected);
+  }
+
+  // A genome stored by hash only that breeding does not give back is an error, not a wrong
+  // genome: change a fitness the breeding of generation 21 depends on.
+  Sql(tmp.path + "/whole",
+      "UPDATE individuals SET fitness = fitness + 10 WHERE generation = 20 AND idx = 3");
+  auto damaged = RunStore::Open(tmp.path + "/whole", evolver::StoreAccess::kRead);
+  CHECK_THROWS_WITH(damaged->LoadGeneration(21), Catch::Contains("does not match its hash"));
+}
+
+TEST_CASE("a format-1 run is compacted to format 2 only when breeding gives it back exactly") {
+  TempDir tmp;
+  auto config = SmallConfig();
+  config.ga.generations = 45;
+  HashFitness f;
+  const std::string dir = tmp.path + "/run";
+  {  // a format-1 run: every genome in full (as runs stored before 2026-12-02)
+    auto store =
+        RunStore::Create(dir, "r", 123, evolver::ConfigToJson(config), "test-physics", false);
+    store.reset();
+    Sql(dir, "UPDATE run SET value = '1' WHERE key = 'format_version'");
+    auto v1 = RunStore::Open(dir);
+    REQUIRE(v1->format_version() == 1);
+    REQUIRE(evolver::RunEvolution(*v1, config, f, 1));
+  }
+  const std::string copy = tmp.path + "/copy";
+  fs::copy(dir, copy, fs::copy_options::recursive);
+  const std::string expected = DumpRun(*RunStore::Open(dir, evolver::StoreAccess::kRead));
+  const auto size_before = fs::file_size(dir + "/run.sqlite");
+  {
+    auto store = RunStore::Open(dir);
+    CHECK(store->Compact() > 0);
+    CHECK(store->format_version() == 2);
+    CHECK(store->Compact() == 0);  // nothing left to do
+  }
+  CHECK(fs::file_size(dir + "/run.sqlite") < size_before);
+  CHECK(DumpRun(*RunStore::Open(dir, evolver::StoreAccess::kRead)) == expected);
+
+  // A run whose generations are not what this build breeds (here: a genome of generation 30
+  // replaced, with its hash) is refused and left whole.
+  auto other = RunStore::Open(copy, evolver::StoreAccess::kRead);
+  const auto g29 = other->LoadGeneration(29);
+  other.reset();
+  std::string text = modules::GenomeToJson(g29[3].genome).dump();
+  char hash[20];
+  std::snprintf(hash, sizeof hash, "%016llx",
+                static_cast<unsigned long long>(modules::GenomeHash(g29[3].genome)));
+  std::string quoted;
+  for (char c : text) quoted += c == '\'' ? std::string("''") : std::string(1, c);
+  Sql(copy, "UPDATE individuals SET genome = '" + quoted + "', genome_hash = '" + hash +
+                "' WHERE generation = 30 AND idx = 5");
+  const std::string damaged = DumpRun(*RunStore::Open(copy, evolver::StoreAccess::kRead));
+  {
+    auto store = RunStore::Open(copy);
+    CHECK_THROWS_WITH(store->Compact(), Catch::Contains("generation 30 is not what breeding"));
+    CHECK(store->format_version() == 1);
+  }
+  CHECK(DumpRun(*RunStore::Open(copy, evolver::StoreAccess::kRead)) == damaged);
 }
 
 TEST_CASE("an existing run directory is never overwritten unless asked") {

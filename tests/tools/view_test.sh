@@ -117,9 +117,9 @@ kill $view; wait $view
 echo "== 4. a viewer takes no part in the lockstep: one that vanishes stalls and changes nothing"
 run_lockstep() {
   "$bin/ahhs-launch" --scenario gait --joints fixed --genome "$fixed" --duration 60 --arena VIEW4 \
-    --lcm-url "$url" --timeout 120 2>&1 | sed -n 's/^fitness: //p'
+    --lcm-url "$url" --timeout 120 "$@" 2>&1 | sed -n 's/^fitness: //p'
 }
-alone=$(run_lockstep)
+alone=$(run_lockstep --log launched.lcm)
 [[ -n "$alone" ]] || fail "lockstep episode alone"
 start_view --lcm-url "$url" --arena VIEW4 --rate 200
 "$bin/ahhs-capture" probe "$page" --hold 60 --timeout 90 >/dev/null 2>&1 &
@@ -137,6 +137,12 @@ wait $probe 2>/dev/null
 watched=$vanished
 [[ "$watched" == "$alone" ]] || fail "fitness alone $alone, with a vanishing viewer $watched"
 echo "  fitness $alone alone, with a stalled viewer and after it vanished"
+# The log ahhs-launch recorded plays too: the reset state, 1200 ticks and the end, its fitness.
+start_view launched.lcm
+s=$(js '(ahhs.renderAt(1e9), ahhs.stats())')
+python3 -c "import json,sys; s=json.loads(sys.argv[1]); assert s['frames'] >= 1201 and s['tick'] == 1200 and abs(s['fitness'] - float(sys.argv[2])) < 1e-9, s" "$s" "$alone" ||
+  fail "an ahhs-launch log: $s"
+kill $view; wait $view
 
 echo "== 5. a video of a replay: 1280x720 H.264, its duration and frame count, frames that differ"
 "$bin/ahhs-replay" --genome "$fixed" --scenario gait --joints fixed --video fixed.mp4 --from 8 \

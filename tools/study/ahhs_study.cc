@@ -35,6 +35,7 @@
 
 namespace fs = std::filesystem;
 namespace at = ahhs::tools;
+namespace ev = ahhs::evolver;
 using nlohmann::json;
 
 namespace {
@@ -442,6 +443,31 @@ at::StudyDir OpenOrCreateStudy(const std::string& plan_file, const std::string& 
                               [&](const std::string& f) { return ResolveConfig(evolve, f); });
 }
 
+// ahhs-study compact: every complete run of format 1 to format 2 (evolver/store/run_store.h).
+// A run that another process writes is skipped (it holds the run's lock).
+int Compact(const at::StudyDir& study) {
+  std::uint64_t saved = 0;
+  int compacted = 0, skipped = 0;
+  for (const auto& run : study.Runs()) {
+    if (study.State(run).kind != at::RunStateKind::kComplete) continue;
+    try {
+      auto store = ev::RunStore::Open(study.RunDir(run), ev::StoreAccess::kWrite);
+      if (store->format_version() >= 2) continue;
+      const std::uint64_t s = store->Compact();
+      saved += s;
+      ++compacted;
+      std::printf("%s: %.1f MB smaller\n", run.Name().c_str(), static_cast<double>(s) / 1e6);
+      std::fflush(stdout);
+    } catch (const ev::RunStoreError& e) {
+      ++skipped;
+      std::fprintf(stderr, "ahhs-study: %s\n", e.what());
+    }
+  }
+  std::printf("compacted %d runs, %.1f MB saved; %d skipped\n", compacted,
+              static_cast<double>(saved) / 1e6, skipped);
+  return skipped == 0 ? 0 : kExitFailure;
+}
+
 int Status(const at::StudyDir& study) {
   const auto runs = study.Runs();
   std::map<std::string, std::pair<int, int>> per_config;  // complete, total
@@ -534,6 +560,11 @@ int main(int argc, char** argv) {
   exp->add_option("study", study_dir, "study directory")->required();
   exp->add_option("export", export_dir, "export directory (new, or an export of this study)")
       ->required();
+  CLI::App* compact = app.add_subcommand(
+      "compact",
+      "shrink the study's complete runs of run format 1 to format 2 (genomes of every 20th "
+      "generation; the others bred again when read), each checked first");
+  compact->add_option("study", study_dir, "study directory")->required();
   CLI::App* submit = app.add_subcommand(
       "submit", "submit a study's unfinished runs to a Slurm cluster as one job array");
   SlurmOptions slurm;
@@ -614,6 +645,7 @@ int main(int argc, char** argv) {
       ::execv(tool.c_str(), argv_out.data());
       throw std::runtime_error("cannot run " + tool + ": " + std::strerror(errno));
     }
+    if (*compact) return Compact(at::StudyDir::Open(study_dir));
     if (*exp) {
       const int n = at::StudyDir::Open(study_dir).Export(export_dir);
       std::printf("exported %d complete runs to %s\n", n, export_dir.c_str());

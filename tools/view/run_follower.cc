@@ -18,6 +18,9 @@ RunFollower::RunFollower(std::string run_dir, std::string scratch_dir)
   std::error_code ec;
   if (fs::exists(run_dir_, ec) && !fs::is_directory(run_dir_, ec))
     throw std::runtime_error(run_dir_ + ": not a run directory");
+  const fs::path parent = fs::absolute(run_dir_, ec).parent_path();
+  if (!fs::is_directory(parent, ec))
+    throw std::runtime_error(run_dir_ + ": no such directory, nor its parent " + parent.string());
 }
 
 RunFollower::~RunFollower() = default;

@@ -43,7 +43,8 @@ WebServer::WebServer(const Options& options, Greeting greeting, OnText on_text)
   ctx_ = mg_start2(&init, &error);
   if (ctx_ == nullptr) {
     mg_exit_library();
-    throw WebServerError("cannot serve on " + listen + ": " +
+    throw WebServerError("cannot serve on " + listen +
+                         " (a port in use, or an address not of this machine: --port, --bind): " +
                          (text[0] ? std::string(text) : std::string("civetweb failed to start")));
   }
   mg_set_request_handler(ctx_, "/three.min.js$", &WebServer::ServeThree, this);

@@ -157,10 +157,11 @@ class Chromium:
         return base64.b64decode(self.call("Page.captureScreenshot", params)["data"])
 
     def close(self):
-        try:
-            self.call("Browser.close") if self.proc.poll() is None else None
-        except CaptureError:
-            pass
+        if self.proc.poll() is None:
+            try:
+                self.call("Browser.close")
+            except CaptureError:
+                pass
         try:
             self.proc.wait(timeout=10)
         except subprocess.TimeoutExpired:

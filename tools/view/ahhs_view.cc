@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
   app.add_option("--poll", poll, "--run: seconds between looks at the run")
       ->check(CLI::Range(0.1, 3600.0))
       ->capture_default_str();
-  app.add_option("--video", video, "with a log: write an H.264 MP4 and exit");
+  app.add_option("--video", video, "with a log: write an H.264 MP4 of its first episode and exit");
   app.add_option("--filmstrip", filmstrip,
                  "with a log: write N frames across it as one PNG and exit");
   app.add_option("--frames", frames, "frames of --filmstrip")
@@ -237,6 +237,9 @@ int main(int argc, char** argv) {
       bridge->Maintain();
       for (const auto& m : bridge->Drain()) server->Broadcast(m);
     }
+    std::printf("ahhs-view: %llu states seen, %llu messages that did not decode\n",
+                static_cast<unsigned long long>(bridge->states_seen()),
+                static_cast<unsigned long long>(bridge->undecodable()));
   } else if (follower) {
     while (!g_stop) {
       try {

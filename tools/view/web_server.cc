@@ -73,11 +73,6 @@ int WebServer::Broadcast(const std::string& text) {
   return sent;
 }
 
-int WebServer::clients() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return static_cast<int>(pages_.size());
-}
-
 int WebServer::OnConnect(const mg_connection*, void*) { return 0; }  // accept
 
 void WebServer::OnReady(mg_connection* conn, void* self) {

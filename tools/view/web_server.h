@@ -47,7 +47,6 @@ class WebServer {
   std::string url() const;
   // Sends `text` to every connected page; returns how many got it.
   int Broadcast(const std::string& text);
-  int clients() const;
 
  private:
   static int OnConnect(const mg_connection* conn, void* self);

@@ -141,7 +141,6 @@ let playTime = 0, playing = !capture, speed = 1;
 let live = {frames: [], scene: null, fitness: null, clock: null, mods: {}, episode: null};
 let shown = null;       // the frame on screen
 let selected = null;    // module of the side panel
-let lastFinal = null;
 
 function frameAtTime(r, t) {
   // The last frame whose time <= t (frames are in time order).
@@ -163,7 +162,6 @@ function useRecording(r) {
   buildMoving(r.bodies);
   if (r.scene && r.scene.bodies) buildStatic(r.scene.bodies); else buildStatic({module: [], shape: [], size: [], pose: []});
   playTime = r.frames.length ? r.frames[0].time : 0;
-  lastFinal = r.final;
   document.getElementById('seek').max = String(r.frames.length - 1);
   frameCamera(r.frames[0], true);
   showFrameIndex(0);

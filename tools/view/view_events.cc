@@ -1,7 +1,7 @@
 #include "tools/view/view_events.h"
 
+#include <cctype>
 #include <cmath>
-#include <regex>
 #include <stdexcept>
 
 #include "bus/codec.h"
@@ -114,14 +114,21 @@ ArenaChannel ClassifyChannel(const std::string& arena, const std::string& channe
   if (rest == "SIM/SCENE") r.kind = ArenaChannel::kScene;
   if (rest == "SIM/CLOCK") r.kind = ArenaChannel::kClock;
   if (rest == "FITNESS") r.kind = ArenaChannel::kFitness;
-  static const std::regex module_re("MODULE([0-9]{1,4})/(SENSORS|HINGE|TRACE)");
-  std::smatch m;
-  if (std::regex_match(rest, m, module_re)) {
-    r.module = std::stoi(m[1].str());
-    const std::string what = m[2].str();
-    r.kind = what == "SENSORS" ? ArenaChannel::kSensors
-                               : (what == "HINGE" ? ArenaChannel::kHinge : ArenaChannel::kTrace);
+  // MODULE<1-4 digits>/SENSORS|HINGE|TRACE
+  const std::string m = "MODULE";
+  if (rest.compare(0, m.size(), m) != 0) return r;
+  std::size_t i = m.size();
+  int module = 0, digits = 0;
+  for (; i < rest.size() && std::isdigit(static_cast<unsigned char>(rest[i])) && digits < 5; ++i) {
+    module = module * 10 + (rest[i] - '0');
+    ++digits;
   }
+  if (digits == 0 || digits > 4 || i >= rest.size() || rest[i] != '/') return r;
+  const std::string what = rest.substr(i + 1);
+  if (what == "SENSORS") r.kind = ArenaChannel::kSensors;
+  if (what == "HINGE") r.kind = ArenaChannel::kHinge;
+  if (what == "TRACE") r.kind = ArenaChannel::kTrace;
+  if (r.kind != ArenaChannel::kOther) r.module = module;
   return r;
 }
 

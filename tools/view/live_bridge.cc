@@ -6,39 +6,29 @@
 
 namespace ahhs::view {
 
+template <class Msg, class Store>
+void LiveBridge::Listen(const std::string& channel, Store store) {
+  // Every handler only stores the message, under the lock Drain() and Snapshot() take.
+  subscriptions_.push_back(bus::SubscribeTyped<Msg>(
+      bus_, channel,
+      [this, store](const std::string&, const Msg& m) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        store(m);
+      },
+      &counters_));
+}
+
 LiveBridge::LiveBridge(bus::Bus& bus, const std::string& arena) : bus_(bus), arena_(arena) {
   const bus::ArenaChannels ch(arena);
-  subscriptions_.push_back(bus::SubscribeTyped<sim_state_t>(
-      bus, ch.SimState(),
-      [this](const std::string&, const sim_state_t& m) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (scene_.valid && scene_.msg.episode != m.episode) scene_ = {};  // a new episode
-        if (state_.valid && state_.msg.episode != m.episode) modules_.clear();
-        state_.Set(m);
-        ++states_;
-      },
-      &counters_));
-  subscriptions_.push_back(bus::SubscribeTyped<sim_state_t>(
-      bus, ch.SimScene(),
-      [this](const std::string&, const sim_state_t& m) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        scene_.Set(m);
-      },
-      &counters_));
-  subscriptions_.push_back(bus::SubscribeTyped<fitness_t>(
-      bus, ch.Fitness(),
-      [this](const std::string&, const fitness_t& m) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        fitness_.Set(m);
-      },
-      &counters_));
-  subscriptions_.push_back(bus::SubscribeTyped<sim_clock_t>(
-      bus, ch.SimClock(),
-      [this](const std::string&, const sim_clock_t& m) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        clock_.Set(m);
-      },
-      &counters_));
+  Listen<sim_state_t>(ch.SimState(), [this](const sim_state_t& m) {
+    if (scene_.valid && scene_.msg.episode != m.episode) scene_ = {};  // a new episode
+    if (state_.valid && state_.msg.episode != m.episode) modules_.clear();
+    state_.Set(m);
+    ++states_;
+  });
+  Listen<sim_state_t>(ch.SimScene(), [this](const sim_state_t& m) { scene_.Set(m); });
+  Listen<fitness_t>(ch.Fitness(), [this](const fitness_t& m) { fitness_.Set(m); });
+  Listen<sim_clock_t>(ch.SimClock(), [this](const sim_clock_t& m) { clock_.Set(m); });
 }
 
 void LiveBridge::Want(int module) {
@@ -59,27 +49,12 @@ void LiveBridge::Maintain() {
   for (int i : wanted) {
     if (subscribed_.count(i)) continue;
     subscribed_.insert(i);
-    subscriptions_.push_back(bus::SubscribeTyped<module_sensors_t>(
-        bus_, ch.Sensors(i),
-        [this](const std::string&, const module_sensors_t& m) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          modules_[m.module].sensors.Set(m);
-        },
-        &counters_));
-    subscriptions_.push_back(bus::SubscribeTyped<hinge_command_t>(
-        bus_, ch.Hinge(i),
-        [this](const std::string&, const hinge_command_t& m) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          modules_[m.module].hinge.Set(m);
-        },
-        &counters_));
-    subscriptions_.push_back(bus::SubscribeTyped<module_trace_t>(
-        bus_, ch.Trace(i),
-        [this](const std::string&, const module_trace_t& m) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          modules_[m.module].trace.Set(m);
-        },
-        &counters_));
+    Listen<module_sensors_t>(
+        ch.Sensors(i), [this](const module_sensors_t& m) { modules_[m.module].sensors.Set(m); });
+    Listen<hinge_command_t>(ch.Hinge(i),
+                            [this](const hinge_command_t& m) { modules_[m.module].hinge.Set(m); });
+    Listen<module_trace_t>(ch.Trace(i),
+                           [this](const module_trace_t& m) { modules_[m.module].trace.Set(m); });
   }
 }
 

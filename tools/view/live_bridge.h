@@ -56,6 +56,9 @@ class LiveBridge {
     Newest<module_trace_t> trace;
   };
   static Json ModuleEvent(const ModuleNewest& m);
+  // Subscribes `store(const Msg&)` to `channel`, called with the lock held.
+  template <class Msg, class Store>
+  void Listen(const std::string& channel, Store store);
   bus::Bus& bus_;
   std::string arena_;
   std::set<int> wanted_, subscribed_;

@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "bus/cli.h"
+#include "bus/cli_toml.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "evolver/arena/children.h"
@@ -134,8 +135,8 @@ struct Options {
 };
 
 void AddOptions(CLI::App& app, Options* o) {
-  app.allow_config_extras(CLI::config_extras_mode::error);
-  app.set_config("--config", "", "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
+  ahhs::cli::AddStrictTomlConfig(app,
+                                 "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
   app.add_option("--scenario", o->scenario, "gait or pendulum")
       ->check(CLI::IsMember({"gait", "pendulum"}))
       ->capture_default_str();

@@ -24,8 +24,30 @@ usage_error "Could not convert" "$bin/ahhs-evolve" --population many
 usage_error "did you mean --scenario?" "$bin/ahhs-sim" --scenaro gait
 usage_error "did you mean --parallel?" "$bin/ahhs-study" run --paralel 2
 printf 'scenario = "pendulum"\npopulaton = 5\n' >$tmp/bad.toml
-usage_error "unknown key 'populaton' in the config file (did you mean population?)" \
+usage_error "bad.toml:2: unknown key 'populaton' (did you mean population?)" \
   "$bin/ahhs-evolve" --config $tmp/bad.toml --show-config
+# Config files are TOML, read strictly (a real parser): each error names the file and line.
+config_error() {  # config_error EXPECTED_TEXT FILE_TEXT
+  printf '%b' "$2" >$tmp/c.toml
+  usage_error "c.toml:$1" "$bin/ahhs-evolve" --config $tmp/c.toml --show-config
+}
+config_error "2: .*cannot redefine existing integer 'rules'" 'rules = 30\nrules = 40\n'
+config_error "3: 'foo' is a section" '# a comment\nrules = 3\n[foo]\nbar = 1\n'
+config_error "1: 'rules' is a list" 'rules = [1, 2]\n'
+config_error "1: Error while parsing value" 'rules = = 3\n'
+config_error "1: .*unescaped control characters" 'scenario = "gait\n'
+config_error "2: 'rules' must be a whole number" 'seed = 3\nrules = 3.5\n'
+config_error "1: 'overwrite' must be true or false" 'overwrite = 1\n'
+config_error "1: 'scenario' must be a string" 'scenario = 3\n'
+config_error "1: a config file cannot name another" 'config = "x.toml"\n'
+config_error "1: .*not representable in 64 bits .*as a string" 'seed = 18446744073709551615\n'
+# What a valid file says holds, a seed above 2^63 as a string, and the command line wins.
+printf 'scenario = "pendulum"\nseed = "18446744073709551615"\nmutation-rate = 1\n' >$tmp/ok.toml
+"$bin/ahhs-evolve" --config $tmp/ok.toml --show-config >$tmp/out || fail "a valid config was refused"
+grep -q '"seed": 18446744073709551615' $tmp/out && grep -q '"scenario": "pendulum"' $tmp/out &&
+  grep -q '"mutation_rate": 1.0' $tmp/out || fail "config values: $(cat $tmp/out)"
+"$bin/ahhs-evolve" --config $tmp/ok.toml --scenario gait --show-config | grep -q '"scenario": "gait"' ||
+  fail "the command line does not override the config file"
 # The scripts: ahhs-netns prints its own help (not bash's), ahhs-report exits 2 on a bad option.
 "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" --help >$tmp/out 2>&1 || fail "ahhs-netns --help exits $?"
 grep -q "^usage: ahhs-netns COMMAND" $tmp/out || fail "ahhs-netns --help: $(cat $tmp/out)"

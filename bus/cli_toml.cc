@@ -1,9 +1,10 @@
 #include "bus/cli_toml.h"
 
+#include <toml++/toml.h>
+
 #include <cstdio>
 #include <optional>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "bus/cli.h"
 

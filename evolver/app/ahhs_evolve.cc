@@ -135,8 +135,7 @@ struct Options {
 };
 
 void AddOptions(CLI::App& app, Options* o) {
-  ahhs::cli::AddStrictTomlConfig(app,
-                                 "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
+  ahhs::cli::AddStrictTomlConfig(app, "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
   app.add_option("--scenario", o->scenario, "gait or pendulum")
       ->check(CLI::IsMember({"gait", "pendulum"}))
       ->capture_default_str();

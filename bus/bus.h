@@ -27,10 +27,11 @@ inline constexpr int kDefaultQueueCapacity = 10000;
 
 // Counters of one bus, for diagnostics and tests.
 struct BusStats {
-  std::uint64_t published = 0;  // messages handed to the transport
-  std::uint64_t publish_failures = 0;
-  std::uint64_t dispatched = 0;      // messages passed to a handler
-  std::uint64_t handler_errors = 0;  // handlers that threw (caught, counted, message dropped)
+  std::uint64_t published = 0;         // messages handed to the transport
+  std::uint64_t publish_failures = 0;  // sends that failed: refused by the transport, or a
+                                       // message that could not be encoded (CountUnencodable)
+  std::uint64_t dispatched = 0;        // messages passed to a handler
+  std::uint64_t handler_errors = 0;    // handlers that threw (caught, counted, message dropped)
 };
 
 class Bus {
@@ -46,6 +47,10 @@ class Bus {
                         int queue_capacity = kDefaultQueueCapacity) = 0;
   virtual void Unsubscribe(int subscription_id) = 0;
 
+  // Counts a message for `channel` that its sender could not encode (a string that is not wire
+  // text, bus/wire_text.h) as a publish failure, and logs it (LogSendFailure).
+  virtual void CountUnencodable(const std::string& channel) = 0;
+
   // Waits at most `timeout` for a message, then dispatches every message already waiting.
   // Returns the number of messages dispatched (0 on timeout). Handlers that throw are caught
   // and counted in stats().handler_errors.
@@ -53,6 +58,10 @@ class Bus {
 
   virtual const BusStats& stats() const = 0;
 };
+
+// A send that failed is never silent: a line on stderr, "ahhs: could not send on CHANNEL:
+// WHY (N sends failed)", for the 1st, 10th, 100th, ... failure (`failures` counts them).
+void LogSendFailure(const std::string& channel, const char* why, std::uint64_t failures);
 
 // A subscription that ends itself: destroying (or reset()ting) it unsubscribes, as Drake's
 // DrakeSubscriptionInterface does, so a node that subscribes callbacks on `this` can never be

@@ -23,6 +23,7 @@ class FaultBus final : public Bus {
   int Subscribe(const std::string& channel_regex, RawHandler handler, int queue_capacity) override;
   void Unsubscribe(int id) override { inner_->Unsubscribe(id); }
   int Handle(std::chrono::microseconds timeout) override { return inner_->Handle(timeout); }
+  void CountUnencodable(const std::string& channel) override { inner_->CountUnencodable(channel); }
   const BusStats& stats() const override { return inner_->stats(); }
 
   std::uint64_t dropped() const { return dropped_; }

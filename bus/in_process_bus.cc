@@ -29,6 +29,10 @@ InProcessBus::Slot& InProcessBus::PushSlot() {
   return slot;
 }
 
+void InProcessBus::CountUnencodable(const std::string& channel) {
+  LogSendFailure(channel, "a string field is not wire text", ++stats_.publish_failures);
+}
+
 bool InProcessBus::Publish(const std::string& channel, const void* data, std::size_t size) {
   ++stats_.published;
   const auto& route = Route(channel);

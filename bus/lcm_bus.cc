@@ -114,12 +114,16 @@ LcmBus::~LcmBus() {
 
 bool LcmBus::Publish(const std::string& channel, const void* data, std::size_t size) {
   if (lcm_->publish(channel, data, static_cast<unsigned int>(size)) != 0) {
-    ++stats_.publish_failures;
+    LogSendFailure(channel, "the transport refused the message", ++stats_.publish_failures);
     return false;
   }
   ++stats_.published;
   if (memq_) ++memq_unhandled_;
   return true;
+}
+
+void LcmBus::CountUnencodable(const std::string& channel) {
+  LogSendFailure(channel, "a string field is not wire text", ++stats_.publish_failures);
 }
 
 void LcmBus::Ignore(const lcm_recv_buf_t*, const char*, void*) {}

@@ -33,6 +33,7 @@ class LcmBus final : public Bus {
   int Subscribe(const std::string& channel_regex, RawHandler handler,
                 int queue_capacity = kDefaultQueueCapacity) override;
   void Unsubscribe(int subscription_id) override;
+  void CountUnencodable(const std::string& channel) override;
   int Handle(std::chrono::microseconds timeout) override;
   const BusStats& stats() const override { return stats_; }
 

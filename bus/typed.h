@@ -22,13 +22,19 @@ struct DecodeCounters {
   std::uint64_t dropped = 0;  // messages that failed to decode
 };
 
+// Encodes and publishes `msg`. Returns false when it was not sent: a message that cannot be
+// encoded (bus/codec.h) or that the transport refused; either is counted in the bus's
+// stats().publish_failures and logged.
 template <class Msg>
 bool PublishTyped(Bus& bus, const std::string& channel, const Msg& msg) {
   // One encode buffer per thread and type, reused: publishing allocates nothing once warm.
   thread_local std::vector<std::uint8_t> bytes;
   const int size = msg.getEncodedSize();
   bytes.resize(static_cast<std::size_t>(size));
-  if (size <= 0 || msg.encode(bytes.data(), 0, size) != size) return false;
+  if (size <= 0 || !HasWireText(msg) || msg.encode(bytes.data(), 0, size) != size) {
+    bus.CountUnencodable(channel);
+    return false;
+  }
   return bus.Publish(channel, bytes.data(), bytes.size());
 }
 

@@ -19,6 +19,7 @@
 #include "bus/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
+#include "bus/wire_text.h"
 #include "evolver/arena/children.h"
 #include "evolver/arena/process_arena.h"
 #include "evolver/farm/arena_evaluator.h"
@@ -55,8 +56,16 @@ int main(int argc, char** argv) {
   int slots = 1;
   bool verbose = false, quiet = false, any_run = false;
   std::string run;
-  auto* run_option = app.add_option(
-      "--run", run, "serve this run only (its id, which ahhs-evolve prints); runs are isolated");
+  const auto wire_text = [](const std::string& text) {
+    return ahhs::bus::IsWireText(text)
+               ? std::string()
+               : "must be UTF-8 text of at most " + std::to_string(ahhs::bus::kMaxWireText) +
+                     " bytes without NUL";
+  };
+  auto* run_option =
+      app.add_option("--run", run,
+                     "serve this run only (its id, which ahhs-evolve prints); runs are isolated")
+          ->check(wire_text);
   app.add_flag("--any-run", any_run, "serve every run on this bus (a shared farm)")
       ->excludes(run_option);
   app.add_option("--lcm-url", url, "LCM URL of the evaluation farm (ttl=1 to serve a LAN)")
@@ -71,7 +80,7 @@ int main(int argc, char** argv) {
       app.add_option("--arena-url", arena_url,
                      "LCM URL of the process arena's own traffic (--arena-kind processes; default: "
                      "host-only multicast on a port of this worker's own)");
-  app.add_option("--id", id, "worker id, unique on the bus (default: host:pid)");
+  app.add_option("--id", id, "worker id, unique on the bus (default: host:pid)")->check(wire_text);
   app.add_flag("-v,--verbose", verbose, "print a line per evaluation");
   app.add_flag("-q,--quiet", quiet, "print errors only");
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;

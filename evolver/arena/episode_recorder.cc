@@ -10,6 +10,7 @@
 
 #include "bus/channels.h"
 #include "bus/codec.h"
+#include "bus/wire_text.h"
 #include "evolver/store/atomic_file.h"
 #include "modules/node/trace_codec.h"
 #include "sim/core/gait.h"
@@ -32,6 +33,9 @@ class LogWriter {
   template <class Msg>
   void Write(const std::string& channel, std::int64_t utime, const Msg& msg) {
     auto bytes = ahhs::bus::Encode(msg);
+    if (bytes.empty())
+      throw std::runtime_error("cannot write " + path_ + ": a " + channel +
+                               " message is not encodable (a string is not wire text)");
     lcm::LogEvent e;
     e.eventnum = events_++;
     e.timestamp = utime;
@@ -203,7 +207,7 @@ void EpisodeRecorder::Commit(const EpisodeResult& result) {
     f.states_missed = 0;
     f.fitness = result.ok ? result.fitness : 0;
     f.cost = result.cost;
-    f.message = result.error;
+    f.message = bus::ToWireText(result.error);
     f.utime = last_utime_;
     files_->log->Write(bus::ArenaChannels(spec_.arena).Fitness(), last_utime_, f);
     files_->log->Commit();

@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "bus/channels.h"
+#include "bus/wire_text.h"
 #include "modules/node/genome_codec.h"
 #include "sim/node/sim_codec.h"
 
@@ -55,7 +56,7 @@ eval_result_t ResultMessage(const FarmResult& o) {
   m.cost = o.cost;
   m.wall_time = o.wall_time;
   m.late_messages = o.states_missed;  // the wire keeps its first name
-  m.message = o.message;
+  m.message = bus::ToWireText(o.message);
   return m;
 }
 

@@ -38,14 +38,14 @@ void WorkerNode::OnRequest(const eval_request_t& msg) {
                      std::to_string(msg.protocol_version);
     std::cerr << "ahhs-worker: refused job " << msg.job << " of run " << msg.run << ": "
               << answer.message << '\n';
-    bus::PublishTyped(*bus_, bus::kEvalResultChannel, ResultMessage(answer));
+    SendResult(answer);
     return;
   }
   if (!serve_run_.empty() && !SameRun(serve_run_, msg.run)) {
     ++counters_.refused;
     answer.status = FarmResult::Status::kRefused;
     answer.message = "worker " + id_ + " serves run " + serve_run_ + " only";
-    bus::PublishTyped(*bus_, bus::kEvalResultChannel, ResultMessage(answer));
+    SendResult(answer);
     return;
   }
   if (!seen_.insert({msg.run, msg.job, msg.attempt}).second) return;  // a repeat
@@ -55,11 +55,24 @@ void WorkerNode::OnRequest(const eval_request_t& msg) {
     ++counters_.bad_requests;
     answer.status = FarmResult::Status::kError;
     answer.message = "bad request: " + error;
-    bus::PublishTyped(*bus_, bus::kEvalResultChannel, ResultMessage(answer));
+    SendResult(answer);
     return;
   }
   queue_.push_back(std::move(job));
   PublishStatus();
+}
+
+// A result that is not sent is counted (and logged by the bus); the evolver then gets an error
+// result for the job instead of waiting for its lease to run out.
+void WorkerNode::SendResult(const FarmResult& result) {
+  if (bus::PublishTyped(*bus_, bus::kEvalResultChannel, ResultMessage(result))) return;
+  ++counters_.unsent_results;
+  FarmResult error = result;
+  error.status = FarmResult::Status::kError;
+  error.fitness = 0;
+  error.message = "worker " + id_ + " could not send the result of job " +
+                  std::to_string(result.job) + " (see its log)";
+  bus::PublishTyped(*bus_, bus::kEvalResultChannel, ResultMessage(error));
 }
 
 void WorkerNode::PublishStatus() {
@@ -108,7 +121,7 @@ void WorkerNode::Poll(std::chrono::microseconds wait) {
     ++counters_.evaluations;
     current_job_ = -1;
     current_run_.clear();
-    bus::PublishTyped(*bus_, bus::kEvalResultChannel, ResultMessage(outcome));
+    SendResult(outcome);
     PublishStatus();
     return;
   }

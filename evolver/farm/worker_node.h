@@ -22,9 +22,10 @@ namespace ahhs::evolver {
 
 struct WorkerCounters {
   std::int64_t evaluations = 0;
-  std::int64_t refused = 0;       // requests of another protocol version or another run
-  std::int64_t bad_requests = 0;  // addressed to us but unusable (bad scenario or genome)
-  bus::DecodeCounters requests;   // garbage on EVAL/REQUEST is counted here and dropped
+  std::int64_t refused = 0;         // requests of another protocol version or another run
+  std::int64_t bad_requests = 0;    // addressed to us but unusable (bad scenario or genome)
+  std::int64_t unsent_results = 0;  // results the bus did not send (answered by an error result)
+  bus::DecodeCounters requests;     // garbage on EVAL/REQUEST is counted here and dropped
 };
 
 class WorkerNode {
@@ -53,6 +54,7 @@ class WorkerNode {
  private:
   void OnRequest(const eval_request_t& msg);
   void PublishStatus();
+  void SendResult(const FarmResult& result);
 
   bus::Bus* bus_;
   std::string id_, host_;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "bus/wire_text.h"
 #include "sim/node/sim_codec.h"
 
 namespace ahhs::evolver {
@@ -77,7 +78,7 @@ fitness_t FitnessNode::Message(bool is_final, std::int8_t status, const std::str
   f.status = status;
   f.states_seen = static_cast<std::int32_t>(monitor_->states_seen());
   f.states_missed = static_cast<std::int32_t>(is_final ? monitor_->ticks_missed() : 0);
-  f.message = text;
+  f.message = bus::ToWireText(text);
   return f;
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bus/wire_text.h"
 #include "modules/node/genome_codec.h"
 
 namespace ahhs::modules {
@@ -284,7 +285,7 @@ void ModuleNode::PublishStatus(std::int8_t state) {
   s.missed_ticks = static_cast<std::int32_t>(st.missing_packets);
   s.late_messages = static_cast<std::int32_t>(st.late_messages);
   s.dropped_messages = static_cast<std::int32_t>(st.dropped_messages);
-  s.message = st.last_error;
+  s.message = bus::ToWireText(st.last_error);
   bus::PublishTyped(*bus_, status_channel_, s);
   next_heartbeat_ = Clock::now() + options_.heartbeat;
 }

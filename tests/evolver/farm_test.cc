@@ -230,3 +230,82 @@ TEST_CASE("without any worker the farm gives up with a clear error, Ctrl-C inter
     CHECK_THROWS_AS(farm.Evaluate(batch.jobs), FarmInterrupted);
   }
 }
+
+namespace {
+// A bus that refuses the first `refusals` sends on one channel, as a transport may.
+class RefusingBus final : public bus::Bus {
+ public:
+  RefusingBus(std::string channel, int refusals) : channel_(std::move(channel)), left_(refusals) {}
+  bool Publish(const std::string& channel, const void* data, std::size_t size) override {
+    if (channel == channel_ && left_ > 0) {
+      --left_;
+      return false;
+    }
+    return inner_.Publish(channel, data, size);
+  }
+  int Subscribe(const std::string& regex, bus::RawHandler handler, int capacity) override {
+    return inner_.Subscribe(regex, std::move(handler), capacity);
+  }
+  void Unsubscribe(int id) override { inner_.Unsubscribe(id); }
+  int Handle(std::chrono::microseconds timeout) override { return inner_.Handle(timeout); }
+  void CountUnencodable(const std::string& channel) override { inner_.CountUnencodable(channel); }
+  const bus::BusStats& stats() const override { return inner_.stats(); }
+
+ private:
+  bus::LcmBus inner_{"memq://"};
+  std::string channel_;
+  int left_;
+};
+
+FarmJob OneJob(const std::string& worker) {
+  Batch batch(1);
+  FarmJob job;
+  job.protocol_version = kFarmProtocolVersion;
+  job.run = "r";
+  job.job = 5;
+  job.attempt = 1;
+  job.worker = worker;
+  job.config.kind = sim::ScenarioKind::kPendulum;
+  job.config.num_modules = 2;
+  job.genome = batch.genomes[0];
+  return job;
+}
+}  // namespace
+
+TEST_CASE("a request whose strings are not text is dropped at decode and counted") {
+  bus::LcmBus bus("memq://");
+  WorkerNode worker(&bus, "w", "host", Good);
+  eval_request_t request = RequestMessage(OneJob("w"));
+  request.run = "r\x01n";  // made "r\0n" below: lcm-gen's encoder cannot write a NUL itself
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(request.getEncodedSize()));
+  REQUIRE(request.encode(bytes.data(), 0, static_cast<int>(bytes.size())) ==
+          static_cast<int>(bytes.size()));
+  const auto at = std::search(bytes.begin(), bytes.end(), request.run.begin(), request.run.end());
+  REQUIRE(at != bytes.end());
+  at[1] = 0;
+  bus.Publish(bus::kEvalRequestChannel, bytes.data(), bytes.size());
+  worker.Poll(std::chrono::milliseconds(10));
+  worker.Poll(std::chrono::milliseconds(0));
+  CHECK(worker.counters().requests.dropped == 1);
+  CHECK(worker.counters().requests.decoded == 0);
+  CHECK(worker.counters().evaluations == 0);
+}
+
+TEST_CASE("a result the bus does not send is counted and answered by an error result") {
+  RefusingBus bus(bus::kEvalResultChannel, 1);
+  WorkerNode worker(&bus, "w", "host", Good);
+  std::vector<eval_result_t> results;
+  auto subscription = bus::SubscribeTyped<eval_result_t>(
+      bus, bus::kEvalResultChannel,
+      [&](const std::string&, const eval_result_t& r) { results.push_back(r); });
+  bus::PublishTyped(bus, bus::kEvalRequestChannel, RequestMessage(OneJob("w")));
+  worker.Poll(std::chrono::milliseconds(10));  // takes the request
+  worker.Poll(std::chrono::milliseconds(0));   // evaluates; the result is refused
+  bus.Handle(std::chrono::milliseconds(0));
+  CHECK(worker.counters().evaluations == 1);
+  CHECK(worker.counters().unsent_results == 1);
+  REQUIRE(results.size() == 1);
+  CHECK(results[0].status == eval_result_t::ERROR);
+  CHECK(results[0].job == 5);
+  CHECK_THAT(results[0].message, Catch::Contains("could not send the result of job 5"));
+}

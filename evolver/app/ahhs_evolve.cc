@@ -227,7 +227,7 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
       std::cout << ev::ConfigToJson(*config).dump(2) << '\n';
       return nullptr;
     }
-    store->Export();  // the database is the truth: rebuild files a kill left short or missing
+    store->Export(true);  // the database is the truth: rebuild files missing, short or wrong
   } else {
     config->scenario =
         ahhs::sim::MakeScenarioConfig(ahhs::sim::ParseScenarioKind(o.scenario),
@@ -314,17 +314,26 @@ int main(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
   ev::EvolveConfig config;
   std::unique_ptr<ev::RunStore> store;
+  int session = 0, first = 0;
   try {
     store = OpenRun(app, options, &config);
+    if (!store) return 0;  // --show-config
+    session = store->BeginSession(command_line);
+    first = store->LastGeneration() + 1;
   } catch (const std::exception& e) {
     std::cerr << "ahhs-evolve: " << e.what() << '\n';
     return ahhs::cli::kExitFailure;
   }
-  if (!store) return 0;  // --show-config
   const std::string dir = store->dir();
-  const int session = store->BeginSession(command_line);
-  const int first = store->LastGeneration() + 1;
   const std::string wire_run = store->run_id() + "/s" + std::to_string(session);
+  // The last stored generation for a message, when even reading it fails (a full disk).
+  const auto stored_up_to = [&]() -> std::string {
+    try {
+      return std::to_string(store->LastGeneration());
+    } catch (const std::exception&) {
+      return "?";
+    }
+  };
   if (first >= config.ga.generations) {
     std::cout << "the run in " << dir << " is already complete (" << config.ga.generations
               << " generations)\n";
@@ -412,14 +421,13 @@ int main(int argc, char** argv) {
           static_cast<unsigned long long>(c.results.dropped + c.statuses.dropped));
   } catch (const ev::FarmInterrupted&) {
     progress.Clear();
-    std::printf("interrupted: generations 0-%d are stored in %s\ncontinue with: %s --resume %s\n",
-                store->LastGeneration(), dir.c_str(), self.c_str(), dir.c_str());
+    std::printf("interrupted: generations 0-%s are stored in %s\ncontinue with: %s --resume %s\n",
+                stored_up_to().c_str(), dir.c_str(), self.c_str(), dir.c_str());
     exit_code = 130;
   } catch (const std::exception& e) {
     progress.Clear();
     std::cerr << "ahhs-evolve: " << e.what() << "\nthe run is stored up to generation "
-              << store->LastGeneration() << "; continue with: " << self << " --resume " << dir
-              << '\n';
+              << stored_up_to() << "; continue with: " << self << " --resume " << dir << '\n';
     exit_code = ahhs::cli::kExitFailure;
   }
   local.StopAll(std::chrono::seconds(5));

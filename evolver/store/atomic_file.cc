@@ -1,5 +1,7 @@
 #include "evolver/store/atomic_file.h"
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -10,7 +12,7 @@ namespace fs = std::filesystem;
 
 AtomicTextFile::AtomicTextFile(std::string path)
     : path_(std::move(path)), out_(path_ + ".tmp", std::ios::binary | std::ios::trunc) {
-  if (!out_) throw std::runtime_error("cannot write " + path_);
+  if (!out_) throw std::runtime_error("cannot write " + path_ + ": " + std::strerror(errno));
 }
 
 AtomicTextFile::~AtomicTextFile() {
@@ -23,7 +25,13 @@ AtomicTextFile::~AtomicTextFile() {
 void AtomicTextFile::Commit() {
   out_.flush();
   out_.close();
-  if (!out_) throw std::runtime_error("cannot write " + path_);
+  if (!out_) {
+    const std::string why = std::strerror(errno);
+    std::error_code ignored;
+    fs::remove(path_ + ".tmp", ignored);
+    done_ = true;
+    throw std::runtime_error("cannot write " + path_ + ": " + why);
+  }
   std::error_code ec;
   fs::rename(path_ + ".tmp", path_, ec);
   if (ec) throw std::runtime_error("cannot write " + path_ + ": " + ec.message());

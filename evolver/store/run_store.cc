@@ -1,14 +1,18 @@
 #include "evolver/store/run_store.h"
 
 #include <fcntl.h>
+#include <glib.h>
 #include <sqlite3.h>
 #include <sys/file.h>
+#include <sys/statvfs.h>
 #include <sys/vfs.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -32,7 +36,9 @@ constexpr const char* kLockName = "run.lock";
 int TryLock(const fs::path& root) {
   const fs::path path = root / kLockName;
   const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0) throw RunStoreError("cannot create " + path.string());
+  if (fd < 0)
+    throw RunStoreError("cannot write " + path.string() + ": " + std::strerror(errno) +
+                        " (a run directory must be writable to be written or resumed)");
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     ::close(fd);
     return -1;
@@ -48,12 +54,30 @@ int LockOrThrow(const fs::path& root) {
   return fd;
 }
 
+// "; the filesystem holding it is full (N kB free)" when the filesystem of `path` has less
+// than 1 MiB left: SQLite then reports "disk I/O error" or "database or disk is full".
+std::string FullDiskNote(const fs::path& path) {
+  struct statvfs st {};
+  if (::statvfs(path.c_str(), &st) != 0) return "";
+  const unsigned long long free_bytes =
+      static_cast<unsigned long long>(st.f_bavail) * static_cast<unsigned long long>(st.f_frsize);
+  if (free_bytes >= (1ULL << 20)) return "";
+  return "; the filesystem holding it is full (" + std::to_string(free_bytes / 1024) + " kB free)";
+}
+
+// "PATH: what SQLite says" for the database's last error.
+std::string DatabaseError(sqlite3* db) {
+  const char* file = sqlite3_db_filename(db, "main");
+  const std::string path = file != nullptr && *file != '\0' ? file : "run database";
+  return path + ": " + sqlite3_errmsg(db) + FullDiskNote(fs::path(path).parent_path());
+}
+
 // One prepared statement; finalised on scope exit.
 class Statement {
  public:
   Statement(sqlite3* db, const char* sql) : db_(db) {
     if (sqlite3_prepare_v2(db, sql, -1, &stmt_, nullptr) != SQLITE_OK)
-      throw RunStoreError(std::string("database: ") + sqlite3_errmsg(db));
+      throw RunStoreError(DatabaseError(db));
   }
   ~Statement() { sqlite3_finalize(stmt_); }
   Statement(const Statement&) = delete;
@@ -76,10 +100,13 @@ class Statement {
     const int rc = sqlite3_step(stmt_);
     if (rc == SQLITE_ROW) return true;
     if (rc == SQLITE_DONE) return false;
-    throw RunStoreError(std::string("database: ") + sqlite3_errmsg(db_));
+    throw RunStoreError(DatabaseError(db_));
   }
   void Run() {
     Step();
+    Reset();
+  }
+  void Reset() {
     sqlite3_reset(stmt_);
     sqlite3_clear_bindings(stmt_);
   }
@@ -93,10 +120,64 @@ class Statement {
 
  private:
   void Check(int rc) {
-    if (rc != SQLITE_OK) throw RunStoreError(std::string("database: ") + sqlite3_errmsg(db_));
+    if (rc != SQLITE_OK) throw RunStoreError(DatabaseError(db_));
   }
+  friend class Digest;
   sqlite3* db_;
   sqlite3_stmt* stmt_ = nullptr;
+};
+
+// SHA-256 (GLib's GChecksum) over rows exactly as SQLite stores them: each value's type and
+// its bytes (integers as 8 bytes, reals as their 8 IEEE bytes, text with its length).
+class Digest {
+ public:
+  Digest() : sum_(g_checksum_new(G_CHECKSUM_SHA256)) {}
+  ~Digest() { g_checksum_free(sum_); }
+  Digest(const Digest&) = delete;
+  Digest& operator=(const Digest&) = delete;
+
+  void AddText(const std::string& text) {
+    AddInt(static_cast<std::int64_t>(text.size()));
+    g_checksum_update(sum_, reinterpret_cast<const guchar*>(text.data()),
+                      static_cast<gssize>(text.size()));
+  }
+  // Every row `statement` gives, all columns.
+  void AddRows(Statement& statement) {
+    sqlite3_stmt* stmt = statement.stmt_;
+    std::int64_t rows = 0;
+    while (statement.Step()) {
+      ++rows;
+      const int columns = sqlite3_column_count(stmt);
+      for (int c = 0; c < columns; ++c) {
+        const int type = sqlite3_column_type(stmt, c);
+        AddByte(static_cast<unsigned char>(type));
+        if (type == SQLITE_INTEGER) {
+          AddInt(sqlite3_column_int64(stmt, c));
+        } else if (type == SQLITE_FLOAT) {
+          const double v = sqlite3_column_double(stmt, c);
+          std::uint64_t bits;
+          std::memcpy(&bits, &v, sizeof bits);
+          AddInt(static_cast<std::int64_t>(bits));
+        } else if (type != SQLITE_NULL) {
+          const auto* bytes = static_cast<const char*>(sqlite3_column_blob(stmt, c));
+          AddText(std::string(bytes != nullptr ? bytes : "",
+                              static_cast<std::size_t>(sqlite3_column_bytes(stmt, c))));
+        }
+      }
+    }
+    AddInt(rows);
+  }
+  std::string Hex() { return g_checksum_get_string(sum_); }
+
+ private:
+  void AddByte(unsigned char b) { g_checksum_update(sum_, &b, 1); }
+  void AddInt(std::int64_t v) {
+    unsigned char bytes[8];
+    for (int k = 0; k < 8; ++k)
+      bytes[k] = static_cast<unsigned char>(static_cast<std::uint64_t>(v) >> (8 * k));
+    g_checksum_update(sum_, bytes, 8);
+  }
+  GChecksum* sum_;
 };
 
 // Microseconds since the Unix epoch (the store's timestamps, as on the wire).
@@ -158,7 +239,8 @@ sqlite3* OpenDatabase(const fs::path& path, int flags) {
   if (sqlite3_open_v2(path.c_str(), &db, flags, nullptr) != SQLITE_OK) {
     const std::string why = db ? sqlite3_errmsg(db) : "out of memory";
     sqlite3_close(db);
-    throw RunStoreError(path.string() + ": cannot open the run database: " + why);
+    throw RunStoreError(path.string() + ": cannot open the run database: " + why +
+                        FullDiskNote(path.parent_path()));
   }
   sqlite3_busy_timeout(db, 5000);
   return db;
@@ -188,7 +270,7 @@ void RunStore::Exec(const char* sql) const {
   if (sqlite3_exec(db_, sql, nullptr, nullptr, &error) != SQLITE_OK) {
     const std::string why = error ? error : "unknown error";
     sqlite3_free(error);
-    throw RunStoreError(dir_ + ": database: " + why);
+    throw RunStoreError(dir_ + "/" + kDatabaseName + ": " + why + FullDiskNote(dir_));
   }
 }
 
@@ -237,7 +319,8 @@ std::unique_ptr<RunStore> RunStore::Create(const std::string& dir, const std::st
       "  genome TEXT NOT NULL, genome_hash TEXT NOT NULL, elite INTEGER NOT NULL,"
       "  eval_seed INTEGER NOT NULL, fitness REAL NOT NULL, cost REAL NOT NULL,"
       "  worker TEXT NOT NULL, attempt INTEGER NOT NULL, wall_time REAL NOT NULL,"
-      "  message TEXT NOT NULL, PRIMARY KEY(generation, idx));");
+      "  message TEXT NOT NULL, PRIMARY KEY(generation, idx));"
+      "CREATE TABLE chain(generation INTEGER PRIMARY KEY, digest TEXT NOT NULL);");
   {
     store->Exec("BEGIN");
     Statement put(db, "INSERT INTO run(key, value) VALUES(?, ?)");
@@ -276,11 +359,25 @@ std::unique_ptr<RunStore> RunStore::Open(const std::string& dir, StoreAccess acc
       throw RunStoreError("integrity check failed: " + check.Text(0));
     store->LoadRunTable();
   } catch (const RunStoreError& e) {
+    const std::string full = FullDiskNote(root);
+    if (!full.empty()) throw RunStoreError(e.what());  // the disk, not the database
     throw RunStoreError(dir + ": not a readable run database (" + e.what() + ")");
   }
   if (access == StoreAccess::kWrite) {
     fs::create_directories(root / "best", ec);
-    store->Exec(JournalPragma(root));  // a run may move between filesystems between sessions
+    store->Exec(JournalPragma(root));   // a run may move between filesystems between sessions
+    if (store->format_version_ == 2) {  // chain it: from now on, changes are caught
+      store->Exec("BEGIN IMMEDIATE");
+      try {
+        store->RebuildChain();
+        store->Exec("COMMIT");
+      } catch (...) {
+        sqlite3_exec(db, "ROLLBACK", nullptr, nullptr, nullptr);
+        store->format_version_ = 2;
+        throw;
+      }
+    }
+    store->VerifyChain();
   }
   return store;
 }
@@ -292,7 +389,7 @@ void RunStore::LoadRunTable() {
   if (values.value("format", "") != kFormatName)
     throw RunStoreError("the database is not an ahhs run");
   const std::string version = values.value("format_version", "");
-  if (version != "1" && version != std::to_string(kFormatVersion))
+  if (version != "1" && version != "2" && version != std::to_string(kFormatVersion))
     throw RunStoreError("run format version " + (version.empty() ? "?" : version) +
                         " is not supported (this build reads versions 1 to " +
                         std::to_string(kFormatVersion) + ")");
@@ -492,6 +589,23 @@ void RunStore::CommitGeneration(const GenerationRecord& record,
           .Bind(12, r.evaluation.message)
           .Run();
     }
+    if (Chained()) {
+      std::string previous;
+      if (record.generation == 0) {
+        previous = RunTableDigest();
+      } else {
+        Statement last(db_, "SELECT digest FROM chain WHERE generation = ?");
+        last.Bind(1, static_cast<std::int64_t>(record.generation - 1));
+        if (!last.Step())
+          throw RunStoreError(dir_ + ": generation " + std::to_string(record.generation - 1) +
+                              " has no digest: the store is damaged");
+        previous = last.Text(0);
+      }
+      Statement chain(db_, "INSERT INTO chain(generation, digest) VALUES(?, ?)");
+      chain.Bind(1, static_cast<std::int64_t>(record.generation))
+          .Bind(2, GenerationDigest(record.generation, previous))
+          .Run();
+    }
     Exec("COMMIT");
   } catch (...) {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
@@ -502,7 +616,7 @@ void RunStore::CommitGeneration(const GenerationRecord& record,
 
 std::uint64_t RunStore::Compact() {
   if (lock_fd_ < 0) throw RunStoreError(dir_ + ": compacting needs the run opened for writing");
-  if (format_version_ >= 2) return 0;
+  if (format_version_ >= 2) return 0;  // Open(kWrite) has chained a version-2 run already
   const fs::path db_path = fs::path(dir_) / kDatabaseName;
   std::error_code ec;
   const auto before = fs::file_size(db_path, ec);
@@ -539,19 +653,127 @@ std::uint64_t RunStore::Compact() {
   try {
     Statement drop(db_, "UPDATE individuals SET genome = '' WHERE generation % ? != 0");
     drop.Bind(1, static_cast<std::int64_t>(kGenomeCheckpoint)).Run();
-    Statement version(db_, "UPDATE run SET value = '2' WHERE key = 'format_version'");
-    version.Run();
+    RebuildChain();
     Exec("COMMIT");
   } catch (...) {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    format_version_ = 1;
     throw;
   }
-  format_version_ = 2;
   rederived_generation_ = -1;
   Exec("VACUUM");
   sqlite3_exec(db_, "PRAGMA wal_checkpoint(TRUNCATE)", nullptr, nullptr, nullptr);  // WAL mode
   const auto after = fs::file_size(db_path, ec);
   return before > after ? before - after : 0;
+}
+
+bool RunStore::BestFileIsWhole(const fs::path& path, const GenerationRecord& g) const {
+  Statement stored(db_, "SELECT genome_hash FROM individuals WHERE generation = ? AND idx = ?");
+  stored.Bind(1, static_cast<std::int64_t>(g.generation))
+      .Bind(2, static_cast<std::int64_t>(g.stats.best_index));
+  if (!stored.Step()) return false;
+  try {
+    json meta;
+    const modules::Genome genome = modules::LoadGenomeFile(path.string(), &meta);
+    char hash[20];
+    std::snprintf(hash, sizeof hash, "%016llx",
+                  static_cast<unsigned long long>(modules::GenomeHash(genome)));
+    return stored.Text(0) == hash && meta.at("generation").get<int>() == g.generation &&
+           meta.at("individual").get<int>() == g.stats.best_index &&
+           meta.at("fitness").get<double>() == g.stats.best;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+std::string RunStore::RunTableDigest() const {
+  // format_version is left out: a run changes version (Compact, chaining) without changing.
+  Digest digest;
+  Statement rows(db_, "SELECT key, value FROM run WHERE key != 'format_version' ORDER BY key");
+  digest.AddRows(rows);
+  return digest.Hex();
+}
+
+std::string RunStore::GenerationDigest(int generation, const std::string& previous) const {
+  Digest digest;
+  digest.AddText(previous);
+  Statement row(db_,
+                "SELECT generation, best, mean, median, worst, best_index, wall_time, session, "
+                "committed_utime FROM generations WHERE generation = ?");
+  row.Bind(1, static_cast<std::int64_t>(generation));
+  digest.AddRows(row);
+  Statement individuals(db_,
+                        "SELECT generation, idx, genome, genome_hash, elite, eval_seed, fitness, "
+                        "cost, worker, attempt, wall_time, message FROM individuals "
+                        "WHERE generation = ? ORDER BY idx");
+  individuals.Bind(1, static_cast<std::int64_t>(generation));
+  digest.AddRows(individuals);
+  return digest.Hex();
+}
+
+void RunStore::RebuildChain() {
+  Exec(
+      "CREATE TABLE IF NOT EXISTS chain(generation INTEGER PRIMARY KEY, digest TEXT NOT NULL);"
+      "DELETE FROM chain;");
+  Statement add(db_, "INSERT INTO chain(generation, digest) VALUES(?, ?)");
+  std::string previous = RunTableDigest();
+  for (const auto& g : LoadGenerationRecords()) {
+    previous = GenerationDigest(g.generation, previous);
+    add.Bind(1, static_cast<std::int64_t>(g.generation)).Bind(2, previous).Run();
+  }
+  Statement version(db_, "UPDATE run SET value = ? WHERE key = 'format_version'");
+  version.Bind(1, std::to_string(kFormatVersion)).Run();
+  format_version_ = kFormatVersion;
+  rederived_generation_ = -1;
+}
+
+int RunStore::VerifyChain() const {
+  const auto intact = [](int g) {
+    return g == 0   ? std::string("no generation is intact")
+           : g == 1 ? std::string("generation 0 is intact")
+                    : "generations 0-" + std::to_string(g - 1) + " are intact";
+  };
+  const std::string file = dir_ + "/" + kDatabaseName;
+  std::vector<int> generations;
+  {
+    Statement all(db_, "SELECT generation FROM generations ORDER BY generation");
+    while (all.Step()) generations.push_back(static_cast<int>(all.Int(0)));
+  }
+  for (std::size_t k = 0; k < generations.size(); ++k)
+    if (generations[k] != static_cast<int>(k))
+      throw RunStoreError(file + ": generation " + std::to_string(k) + " is missing (" +
+                          intact(static_cast<int>(k)) + "): the store is damaged");
+  {
+    Statement orphan(db_,
+                     "SELECT MIN(generation) FROM individuals WHERE generation NOT IN "
+                     "(SELECT generation FROM generations)");
+    if (orphan.Step() && !orphan.IsNull(0))
+      throw RunStoreError(file + ": individuals of generation " + std::to_string(orphan.Int(0)) +
+                          " belong to no stored generation: the store is damaged");
+  }
+  if (!Chained()) return 0;
+  Statement stored(db_, "SELECT digest FROM chain WHERE generation = ?");
+  std::string previous = RunTableDigest();
+  for (const int g : generations) {
+    previous = GenerationDigest(g, previous);
+    stored.Bind(1, static_cast<std::int64_t>(g));
+    const bool has = stored.Step();
+    const std::string digest = has ? stored.Text(0) : "";
+    stored.Reset();
+    if (digest != previous)
+      throw RunStoreError(file + ": generation " + std::to_string(g) +
+                          (g == 0 ? " (or the run's configuration)" : "") +
+                          (has ? " does not match its digest" : " has no digest") +
+                          ": the store was changed or damaged after it was written (" + intact(g) +
+                          "); refusing to use it");
+  }
+  Statement extra(db_, "SELECT COUNT(*) FROM chain WHERE generation > ?");
+  extra.Bind(1, static_cast<std::int64_t>(generations.size()) - 1);
+  if (extra.Step() && extra.Int(0) > 0)
+    throw RunStoreError(file + ": generation " + std::to_string(generations.size()) +
+                        " has a digest but no rows (" +
+                        intact(static_cast<int>(generations.size())) + "): the store is damaged");
+  return static_cast<int>(generations.size());
 }
 
 IndividualRecord RunStore::Best() const {
@@ -562,7 +784,7 @@ IndividualRecord RunStore::Best() const {
   return LoadIndividual(static_cast<int>(best.Int(0)), static_cast<int>(best.Int(1)));
 }
 
-void RunStore::Export() const {
+void RunStore::Export(bool check_existing) const {
   const fs::path root(dir_);
   std::ostringstream csv;
   csv << "generation,best,mean,median,worst,best_index,wall_time_s\n";
@@ -587,7 +809,7 @@ void RunStore::Export() const {
     char name[32];
     std::snprintf(name, sizeof name, "gen-%04d.json", g.generation);
     const fs::path path = root / "best" / name;
-    if (fs::exists(path, ec)) continue;  // generations never change once committed
+    if (fs::exists(path, ec) && (!check_existing || BestFileIsWhole(path, g))) continue;
     const IndividualRecord r = LoadIndividual(g.generation, g.stats.best_index);
     modules::SaveGenomeFile(path.string(), r.genome, meta(r));
   }

@@ -4,6 +4,9 @@
 //                         statistics of every generation, the sessions (start and resumes).
 //                         One transaction per generation: a killed run loses at most the
 //                         generation in progress and resumes from the last committed one.
+//                         Each generation carries a SHA-256 digest of its rows chained to the
+//                         previous generation's (and, for generation 0, to the run table), so
+//                         a store that was changed after the fact is caught (VerifyChain).
 //   generations.csv       generation, best, mean, median, worst, wall time (s)
 //   best/gen-NNNN.json    the best genome of every generation (docs/genome.md)
 //   best.json             the best genome of the run so far
@@ -12,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -58,8 +62,9 @@ class RunStore {
   // (0, 20, 40, ...); the others keep each genome's hash, and reading one re-derives its
   // generation by breeding from the full generation before it (the GA is a pure function of a
   // generation's genomes and fitness and the run seed: evolver/ga/ga.h), checked against the
-  // hashes. Version 1 (every genome in full) is read and resumed as it is.
-  static constexpr int kFormatVersion = 2;
+  // hashes. Version 3 is version 2 with the digest chain. Version 1 (every genome in full, no
+  // chain) is read and resumed as it is; Open(kWrite) brings version 2 to 3, Compact 1 to 3.
+  static constexpr int kFormatVersion = 3;
   static constexpr int kGenomeCheckpoint = 20;
 
   // Makes a new run directory. Refuses an existing non-empty directory unless `overwrite`, in
@@ -70,8 +75,8 @@ class RunStore {
                                           std::uint64_t run_seed, const nlohmann::json& config,
                                           const std::string& physics, bool overwrite);
   // Opens an existing run (kWrite to resume it, kRead to read it). Checks that it is a run
-  // directory of this format and that its database is intact; kWrite refuses a directory that
-  // another process is writing.
+  // directory of this format and that its database is intact; kWrite also verifies the digest
+  // chain (VerifyChain), and refuses a directory that another process is writing.
   static std::unique_ptr<RunStore> Open(const std::string& dir,
                                         StoreAccess access = StoreAccess::kWrite);
   // True when a process holds the write lock of `dir` (a run in progress).
@@ -101,15 +106,24 @@ class RunStore {
   void CommitGeneration(const GenerationRecord& record,
                         const std::vector<IndividualRecord>& individuals);
 
-  // Brings a version-1 run to version 2 (store opened kWrite): after checking that every
+  // Brings a version-1 run to version 3 (store opened kWrite): after checking that every
   // generation is exactly what breeding the one before gives (a run of another build's
   // variation is refused and left as it was), the genomes of the generations that are not
-  // checkpoints are dropped and the database vacuumed. Returns the bytes saved.
+  // checkpoints are dropped, the generations chained and the database vacuumed. Returns the bytes
+  // saved.
   std::uint64_t Compact();
   int format_version() const { return format_version_; }
 
-  // Rewrites generations.csv, best/gen-NNNN.json and best.json from the database.
-  void Export() const;
+  // Checks that the generations are 0 to LastGeneration() and that each one's rows match its
+  // digest. Throws RunStoreError naming the first generation that does not ("... generation 57
+  // does not match its digest ... generations 0-56 are intact"). A version-1 run has no chain:
+  // only the numbering is checked. Returns the number of generations checked against digests.
+  int VerifyChain() const;
+
+  // Rewrites generations.csv and best.json from the database, and writes best/gen-NNNN.json for
+  // generations that have none. `check_existing` (a resume) also rewrites a best file that is
+  // not the whole, right genome file (short, damaged, another individual).
+  void Export(bool check_existing = false) const;
 
   // The best individual of the run so far (highest fitness; earliest on ties).
   IndividualRecord Best() const;
@@ -122,6 +136,14 @@ class RunStore {
   // Every genome of a generation stored by hash only, bred again from the newest full one.
   const std::vector<modules::Genome>& Rederive(int generation) const;
   bool StoresInFull(int generation) const;
+  bool Chained() const { return format_version_ >= 3; }
+  // The digest of `generation`'s rows after `previous` (the run table's digest for generation 0).
+  std::string GenerationDigest(int generation, const std::string& previous) const;
+  std::string RunTableDigest() const;
+  bool BestFileIsWhole(const std::filesystem::path& path, const GenerationRecord& g) const;
+  // Digests every generation again (after Compact, or to chain a version-2 run) and sets
+  // version 3; inside the caller's transaction.
+  void RebuildChain();
   std::uint64_t BreedingSeed() const;
 
   std::string dir_;

@@ -1,7 +1,9 @@
 #include "modules/core/genome_json.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -260,17 +262,19 @@ void SaveGenomeFile(const std::string& path, const Genome& genome, const json& m
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw GenomeFileError(path + ": cannot write " + tmp);
+    if (!out) throw GenomeFileError(path + ": cannot write " + tmp + ": " + std::strerror(errno));
     out << GenomeToJson(genome, meta).dump(2) << '\n';
     out.flush();
     if (!out) {
+      const std::string why = std::strerror(errno);
       std::remove(tmp.c_str());
-      throw GenomeFileError(path + ": write failed");
+      throw GenomeFileError(path + ": write failed: " + why);
     }
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string why = std::strerror(errno);
     std::remove(tmp.c_str());
-    throw GenomeFileError(path + ": cannot rename " + tmp + " into place");
+    throw GenomeFileError(path + ": cannot rename " + tmp + " into place: " + why);
   }
 }
 

@@ -175,7 +175,7 @@ void Sql(const std::string& dir, const std::string& sql) {
   sqlite3_close(db);
 }
 
-TEST_CASE("format 2 keeps every 20th generation's genomes and breeds the others again exactly") {
+TEST_CASE("format 3 keeps every 20th generation's genomes and breeds the others again exactly") {
   TempDir tmp;
   auto config = SmallConfig();
   config.ga.generations = 50;
@@ -183,7 +183,7 @@ TEST_CASE("format 2 keeps every 20th generation's genomes and breeds the others 
   auto whole = RunStore::Create(tmp.path + "/whole", "w", 123, evolver::ConfigToJson(config),
                                 "test-physics", false);
   REQUIRE(evolver::RunEvolution(*whole, config, f, 1));
-  CHECK(whole->format_version() == 2);
+  CHECK(whole->format_version() == 3);
   const std::string expected = DumpRun(*whole);  // every genome read back, checked by its hash
   whole.reset();
   // Only generations 0, 20 and 40 hold genomes.
@@ -221,9 +221,13 @@ TEST_CASE("format 2 keeps every 20th generation's genomes and breeds the others 
       "UPDATE individuals SET fitness = fitness + 10 WHERE generation = 20 AND idx = 3");
   auto damaged = RunStore::Open(tmp.path + "/whole", evolver::StoreAccess::kRead);
   CHECK_THROWS_WITH(damaged->LoadGeneration(21), Catch::Contains("does not match its hash"));
+  // And the digest chain names the generation that was changed.
+  CHECK_THROWS_WITH(damaged->VerifyChain(),
+                    Catch::Contains("generation 20 does not match its digest") &&
+                        Catch::Contains("generations 0-19 are intact"));
 }
 
-TEST_CASE("a format-1 run is compacted to format 2 only when breeding gives it back exactly") {
+TEST_CASE("a format-1 run is compacted to format 3 only when breeding gives it back exactly") {
   TempDir tmp;
   auto config = SmallConfig();
   config.ga.generations = 45;
@@ -245,8 +249,9 @@ TEST_CASE("a format-1 run is compacted to format 2 only when breeding gives it b
   {
     auto store = RunStore::Open(dir);
     CHECK(store->Compact() > 0);
-    CHECK(store->format_version() == 2);
-    CHECK(store->Compact() == 0);  // nothing left to do
+    CHECK(store->format_version() == 3);
+    CHECK(store->VerifyChain() == 45);  // chained as it was compacted
+    CHECK(store->Compact() == 0);       // nothing left to do
   }
   CHECK(fs::file_size(dir + "/run.sqlite") < size_before);
   CHECK(DumpRun(*RunStore::Open(dir, evolver::StoreAccess::kRead)) == expected);
@@ -271,6 +276,117 @@ TEST_CASE("a format-1 run is compacted to format 2 only when breeding gives it b
     CHECK(store->format_version() == 1);
   }
   CHECK(DumpRun(*RunStore::Open(copy, evolver::StoreAccess::kRead)) == damaged);
+}
+
+TEST_CASE("every generation's digest is chained: a store changed afterwards is refused") {
+  TempDir tmp;
+  auto config = SmallConfig();
+  config.ga.generations = 8;
+  HashFitness f;
+  const std::string dir = tmp.path + "/run";
+  {
+    auto store =
+        RunStore::Create(dir, "r", 123, evolver::ConfigToJson(config), "test-physics", false);
+    REQUIRE(evolver::RunEvolution(*store, config, f, 1));
+    CHECK(store->VerifyChain() == 8);
+  }
+  const auto refused = [&](const std::string& sql) {
+    const std::string copy = tmp.path + "/copy";
+    fs::remove_all(copy);
+    fs::copy(dir, copy, fs::copy_options::recursive);
+    Sql(copy, sql);
+    try {
+      RunStore::Open(copy);  // a resume
+    } catch (const RunStoreError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  // One bit of one double; a value SQLite's own checks cannot see as wrong.
+  CHECK_THAT(refused("UPDATE individuals SET fitness = fitness * (1 + 2.3e-16) WHERE "
+                     "generation = 5 AND idx = 2"),
+             Catch::Contains("run.sqlite: generation 5 does not match its digest") &&
+                 Catch::Contains("generations 0-4 are intact"));
+  CHECK_THAT(refused("UPDATE individuals SET worker = 'x' WHERE generation = 0 AND idx = 0"),
+             Catch::Contains("generation 0 (or the run's configuration) does not match") &&
+                 Catch::Contains("no generation is intact"));
+  CHECK_THAT(refused("UPDATE run SET value = '124' WHERE key = 'seed'"),
+             Catch::Contains("generation 0 (or the run's configuration) does not match"));
+  CHECK_THAT(refused("UPDATE generations SET best = 9 WHERE generation = 7"),
+             Catch::Contains("generation 7 does not match"));
+  CHECK_THAT(refused("DELETE FROM individuals WHERE generation = 6 AND idx = 7"),
+             Catch::Contains("generation 6 does not match"));
+  CHECK_THAT(refused("UPDATE chain SET digest = upper(digest) WHERE generation = 3"),
+             Catch::Contains("generation 3 does not match"));
+  CHECK_THAT(refused("DELETE FROM chain WHERE generation = 2"),
+             Catch::Contains("generation 2 has no digest"));
+  CHECK_THAT(refused("DELETE FROM generations WHERE generation = 1"),
+             Catch::Contains("generation 1 is missing (generation 0 is intact)"));
+  CHECK_THAT(refused("DELETE FROM generations WHERE generation = 7"),
+             Catch::Contains("individuals of generation 7 belong to no stored generation"));
+  CHECK_THAT(refused("DROP TABLE chain"), Catch::Contains("run.sqlite: no such table: chain"));
+  CHECK_THAT(refused("DROP TABLE sessions; UPDATE run SET value = '2' WHERE key = "
+                     "'format_version'"),
+             Catch::Contains("accepted"));  // version 2 is chained as it is found
+  CHECK(refused("UPDATE generations SET wall_time = wall_time") == "accepted");  // same values
+}
+
+TEST_CASE("a version-2 run is chained when it is opened for writing, and resumes the same") {
+  TempDir tmp;
+  auto config = SmallConfig();
+  config.ga.generations = 8;
+  HashFitness f;
+  const std::string whole = tmp.path + "/whole", part = tmp.path + "/part";
+  {
+    auto store =
+        RunStore::Create(whole, "r", 123, evolver::ConfigToJson(config), "test-physics", false);
+    REQUIRE(evolver::RunEvolution(*store, config, f, 1));
+  }
+  {
+    auto store =
+        RunStore::Create(part, "r", 123, evolver::ConfigToJson(config), "test-physics", false);
+    evolver::EvolutionHooks hooks;
+    int committed = 0;
+    hooks.on_generation = [&](const evolver::GenerationRecord&) { ++committed; };
+    hooks.stop = [&] { return committed > 3; };
+    REQUIRE_FALSE(evolver::RunEvolution(*store, config, f, 1, hooks));
+  }
+  // As a build before the chain left it.
+  Sql(part, "DROP TABLE chain; UPDATE run SET value = '2' WHERE key = 'format_version'");
+  REQUIRE(RunStore::Open(part, evolver::StoreAccess::kRead)->format_version() == 2);
+  auto resumed = RunStore::Open(part);
+  CHECK(resumed->format_version() == 3);
+  CHECK(resumed->VerifyChain() == 4);
+  REQUIRE(evolver::RunEvolution(*resumed, config, f, 2));
+  CHECK(resumed->VerifyChain() == 8);
+  CHECK(DumpRun(*resumed) == DumpRun(*RunStore::Open(whole, evolver::StoreAccess::kRead)));
+}
+
+TEST_CASE("a resume rebuilds from the database the exports that are missing, short or wrong") {
+  TempDir tmp;
+  auto config = SmallConfig();
+  HashFitness f;
+  const std::string dir = tmp.path + "/run";
+  {
+    auto store =
+        RunStore::Create(dir, "r", 123, evolver::ConfigToJson(config), "test-physics", false);
+    REQUIRE(evolver::RunEvolution(*store, config, f, 1));
+  }
+  const std::string csv = ReadFile(dir + "/generations.csv"), best = ReadFile(dir + "/best.json"),
+                    gen2 = ReadFile(dir + "/best/gen-0002.json"),
+                    gen3 = ReadFile(dir + "/best/gen-0003.json"),
+                    gen5 = ReadFile(dir + "/best/gen-0005.json");
+  std::ofstream(dir + "/generations.csv") << csv.substr(0, csv.size() / 2);
+  fs::remove(dir + "/best.json");
+  std::ofstream(dir + "/best/gen-0002.json") << gen2.substr(0, gen2.size() - 10);
+  fs::remove(dir + "/best/gen-0003.json");
+  std::ofstream(dir + "/best/gen-0005.json") << gen2;  // whole, but another generation's
+  RunStore::Open(dir)->Export(true);
+  CHECK(ReadFile(dir + "/generations.csv") == csv);
+  CHECK(ReadFile(dir + "/best.json") == best);
+  CHECK(ReadFile(dir + "/best/gen-0002.json") == gen2);
+  CHECK(ReadFile(dir + "/best/gen-0003.json") == gen3);
+  CHECK(ReadFile(dir + "/best/gen-0005.json") == gen5);
 }
 
 TEST_CASE("an existing run directory is never overwritten unless asked") {

@@ -141,6 +141,7 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--mutants needs --mutants-csv FILE");
     if (!run_dir.empty()) {
       auto store = ev::RunStore::Open(run_dir, ev::StoreAccess::kRead);
+      store->VerifyChain();  // never replay from a store changed after it was written
       const ev::EvolveConfig config = ev::ConfigFromJson(store->config());
       ev::IndividualRecord record;
       if (generation < 0) {

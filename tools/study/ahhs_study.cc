@@ -443,7 +443,7 @@ at::StudyDir OpenOrCreateStudy(const std::string& plan_file, const std::string& 
                               [&](const std::string& f) { return ResolveConfig(evolve, f); });
 }
 
-// ahhs-study compact: every complete run of format 1 to format 2 (evolver/store/run_store.h).
+// ahhs-study compact: every complete run of format 1 to format 3 (evolver/store/run_store.h).
 // A run that another process writes is skipped (it holds the run's lock).
 int Compact(const at::StudyDir& study) {
   std::uint64_t saved = 0;
@@ -562,7 +562,7 @@ int main(int argc, char** argv) {
       ->required();
   CLI::App* compact = app.add_subcommand(
       "compact",
-      "shrink the study's complete runs of run format 1 to format 2 (genomes of every 20th "
+      "shrink the study's complete runs of run format 1 to format 3 (genomes of every 20th "
       "generation; the others bred again when read), each checked first");
   compact->add_option("study", study_dir, "study directory")->required();
   CLI::App* submit = app.add_subcommand(

@@ -84,6 +84,11 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
       ++counters_.reissued;
       hooks_.report("job " + std::to_string(r.job) + " re-issued (" + r.reason + ", worker " +
                     r.worker + ")");
+      if (r.passed_over)
+        hooks_.report(
+            "worker " + r.worker + " lost " + std::to_string(options_.lease.pass_over_after) +
+            " leases in a row: passed over for " +
+            std::to_string(options_.lease.pass_over.count() / 1000) + " s while others have room");
     }
     Dispatch(&batch, now);
     CheckWorkers(&batch, now);
@@ -108,7 +113,8 @@ void FarmEvaluator::FeedStatuses(Batch* batch, FarmClock::time_point now) {
       ours = w.status.jobs;
     else if (!w.status.run.empty())  // busy with, or dedicated to, another run
       others = std::max(static_cast<int>(w.status.jobs.size()), w.status.slots);
-    batch->table.OnWorkerStatus(name, w.status.slots, ours, others, w.heard);
+    batch->table.OnWorkerStatus(name, w.status.slots, ours, others, w.heard,
+                                w.status.evaluations_done);
   }
 }
 

@@ -13,6 +13,12 @@
 //   there is one; after `max_invalid` invalid results the job has failed.
 // - A worker gets at most slots + `prefetch` jobs at once, so that it never waits for the
 //   evolver between two evaluations.
+// - Fair retries: a job goes preferably to a worker that has not lost a lease of it, and a
+//   worker that lost `pass_over_after` leases in a row (expired: lossy link, overloaded host)
+//   is passed over for `pass_over` while another live worker has room; a valid result ends its
+//   run of losses. Among equals the worker with the most free capacity wins, then the first name.
+// - A worker that restarted under the same id (its evaluations_done count went down) has lost
+//   its leases: they are re-issued at once, without waiting for `status_grace`.
 #pragma once
 
 #include <chrono>
@@ -33,6 +39,8 @@ struct LeaseOptions {
   std::chrono::milliseconds status_grace{3000};
   int prefetch = 1;
   int max_invalid = 5;
+  int pass_over_after = 2;
+  std::chrono::milliseconds pass_over{30000};
 };
 
 struct Dispatch {
@@ -46,6 +54,7 @@ struct Reissue {
   std::int64_t job = 0;
   std::string worker;  // who had it
   std::string reason;
+  bool passed_over = false;  // this loss made `worker` passed over for a while
 };
 
 class LeaseTable {
@@ -56,8 +65,11 @@ class LeaseTable {
 
   // A status of `worker` heard at `now`: its slots, the jobs of this batch's run it lists, and
   // how many slots jobs of other runs occupy.
+  // `evaluations_done` counts the worker's evaluations since it started (-1: unknown); a count
+  // lower than the last one means the worker restarted.
   void OnWorkerStatus(const std::string& worker, int slots, const std::vector<std::int64_t>& jobs,
-                      int busy_with_others, FarmClock::time_point now);
+                      int busy_with_others, FarmClock::time_point now,
+                      std::int64_t evaluations_done = -1);
 
   // Stops using `worker`: it gets no new jobs, and its leases end at the next Expire().
   void Forget(const std::string& worker) { workers_.erase(worker); }
@@ -83,12 +95,14 @@ class LeaseTable {
   bool Failed(std::int64_t job) const;
   int LiveWorkers(FarmClock::time_point now) const;
   int attempts(std::int64_t job) const;  // issues so far
+  bool PassedOver(const std::string& worker, FarmClock::time_point now) const;
 
  private:
   struct Lease {
     std::string worker;
     int attempt = 0;
     FarmClock::time_point dispatched, deadline;
+    std::string lost;  // why it ended early ("" until then)
   };
   struct Job {
     bool done = false;
@@ -97,12 +111,16 @@ class LeaseTable {
     int invalid = 0;
     std::optional<Lease> lease;
     std::set<std::string> excluded;  // workers that returned an invalid result for it
+    std::set<std::string> lost_by;   // workers whose lease of it expired
   };
   struct Worker {
     int slots = 0;
     int busy_with_others = 0;
     int leased = 0;
     FarmClock::time_point last_heard;
+    std::int64_t evaluations_done = -1;
+    int losses = 0;  // leases lost in a row
+    FarmClock::time_point passed_over_until{};
   };
   bool Alive(const Worker& w, FarmClock::time_point now) const {
     return now - w.last_heard <= options_.worker_silence;

@@ -158,3 +158,79 @@ TEST_CASE("a refusal sends the job elsewhere and never fails it") {
   CHECK(d[0].worker == "ours");
   CHECK(t.OnResult(0, d[0].attempt, "ours", true, t0) == LeaseTable::Verdict::kAccepted);
 }
+
+TEST_CASE("a job whose lease expired goes to another worker, even one that sorts later") {
+  LeaseTable t(Options());
+  t.AddJob(0);
+  t.OnWorkerStatus("a-lossy", 1, {}, 0, t0);
+  t.OnWorkerStatus("b-clean", 1, {}, 0, t0);
+  auto d = t.Schedule(t0);
+  REQUIRE(d.size() == 1);
+  CHECK(d[0].worker == "a-lossy");  // ties go to the first name
+  const auto t1 = t0 + milliseconds(1001);
+  t.OnWorkerStatus("a-lossy", 1, {0}, 0, t1 - milliseconds(1));  // alive, but no result came
+  t.OnWorkerStatus("b-clean", 1, {}, 0, t1 - milliseconds(1));
+  REQUIRE(t.Expire(t1).size() == 1);
+  d = t.Schedule(t1);
+  REQUIRE(d.size() == 1);
+  CHECK(d[0].worker == "b-clean");
+  CHECK(d[0].attempt == 1);
+}
+
+TEST_CASE("a worker that loses leases in a row is passed over for a while, not for ever") {
+  auto o = Options();
+  o.pass_over_after = 2;
+  o.pass_over = milliseconds(5000);
+  LeaseTable t(o);
+  for (int j = 0; j < 6; ++j) t.AddJob(j);
+  auto now = t0;
+  auto heard = [&](std::vector<std::int64_t> a_jobs) {
+    t.OnWorkerStatus("a", 1, a_jobs, 0, now);
+    t.OnWorkerStatus("b", 1, {}, 0, now);
+  };
+  heard({});
+  // Jobs 0 and 1 go to a (first name, prefetch 1); b takes 2 and 3.
+  auto d = t.Schedule(now);
+  REQUIRE(d.size() == 4);
+  for (const auto& x : d)
+    if (x.worker == "b")
+      CHECK(t.OnResult(x.job, x.attempt, "b", true, now) == LeaseTable::Verdict::kAccepted);
+  now += milliseconds(1001);
+  heard({0, 1});
+  const auto lost = t.Expire(now);  // a lost both of its leases
+  REQUIRE(lost.size() == 2);
+  CHECK_FALSE(lost[0].passed_over);
+  CHECK(lost[1].passed_over);
+  CHECK(t.PassedOver("a", now));
+  // Jobs 0, 1, 4, 5: b (one slot + prefetch) is ranked first while a is passed over.
+  d = t.Schedule(now);
+  REQUIRE(d.size() == 4);
+  CHECK(d[0].worker == "b");
+  CHECK(d[1].worker == "b");
+  CHECK(d[2].worker == "a");  // b is full: a still works, it is only ranked last
+  // After the pass-over time a is ranked by capacity again; a valid result clears its losses.
+  now += milliseconds(5001);
+  CHECK_FALSE(t.PassedOver("a", now));
+  CHECK(t.OnResult(d[2].job, d[2].attempt, "a", true, now) == LeaseTable::Verdict::kAccepted);
+}
+
+TEST_CASE("a worker restarted under the same id loses its leases at once, not after the grace") {
+  LeaseTable t(Options());
+  t.AddJob(0);
+  t.AddJob(1);
+  t.OnWorkerStatus("w", 1, {}, 0, t0, 7);
+  auto d = t.Schedule(t0);
+  REQUIRE(d.size() == 2);
+  // 50 ms later (status_grace is 200 ms) the new process says it has done nothing yet.
+  const auto t1 = t0 + milliseconds(50);
+  t.OnWorkerStatus("w", 1, {}, 0, t1, 0);
+  const auto lost = t.Expire(t1);
+  REQUIRE(lost.size() == 2);
+  CHECK(lost[0].reason == "worker restarted");
+  d = t.Schedule(t1);
+  REQUIRE(d.size() == 2);
+  CHECK(d[0].attempt == 1);
+  // Its count going up again is no restart.
+  t.OnWorkerStatus("w", 1, {0, 1}, 0, t1 + milliseconds(10), 1);
+  CHECK(t.Expire(t1 + milliseconds(10)).empty());
+}

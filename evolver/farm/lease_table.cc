@@ -59,6 +59,13 @@ std::vector<Dispatch> LeaseTable::Schedule(FarmClock::time_point now) {
     }
     const bool best_excluded = best != nullptr && std::get<0>(best_rank);
     if (!best) break;  // every live worker is full
+    if (!best_excluded && std::get<2>(best_rank)) {
+      // Only passed-over workers have room: wait for one that is not, while one is alive.
+      bool other_exists = false;
+      for (auto& [name, w] : workers_)
+        if (Alive(w, now) && w.slots > 0 && now >= w.passed_over_until) other_exists = true;
+      if (other_exists) continue;
+    }
     if (best_excluded) {
       // Only workers that failed this job have room: wait for another one while one exists.
       bool other_exists = false;

@@ -15,8 +15,9 @@
 //   evolver between two evaluations.
 // - Fair retries: a job goes preferably to a worker that has not lost a lease of it, and a
 //   worker that lost `pass_over_after` leases in a row (expired: lossy link, overloaded host)
-//   is passed over for `pass_over` while another live worker has room; a valid result ends its
-//   run of losses. Among equals the worker with the most free capacity wins, then the first name.
+//   gets no new job for `pass_over` while a worker that is not passed over is alive (the job
+//   waits for that one); a valid result ends its run of losses. Among equals the worker with
+//   the most free capacity wins, then the first name.
 // - A worker that restarted under the same id (its evaluations_done count went down) has lost
 //   its leases: they are re-issued at once, without waiting for `status_grace`.
 #pragma once

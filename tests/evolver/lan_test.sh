@@ -3,7 +3,9 @@
 # a switch namespace with a bridge, and three hosts joined to it by veth pairs. The evolver runs
 # on host 0 with no local worker, ahhs-worker runs on hosts 1 and 2, multicast with ttl=1 crosses
 # the bridge (and nothing else: the namespaces have no other interface). Then host 1 loses 10 %
-# of what it receives (nftables). Both runs must match the one-host run bit for bit.
+# of what it receives (nftables). Both runs must match the one-host run bit for bit. Last, large
+# requests (AHHS1-300, 12 IP fragments each) lose 30 % of their fragments towards host 1 on the
+# bridge: the run must give the loss-free results, in bounded time (fair retries).
 set -uo pipefail
 bin=${1:?usage: lan_test.sh BIN_DIR}
 skip() { echo "SKIPPED: $*"; exit 77; }
@@ -74,4 +76,30 @@ in_host ${hosts[0]} timeout 300 "$bin/ahhs-evolve" $args --out $tmp/lossy --work
 dump $tmp/lossy >$tmp/lossy.dump
 cmp -s $tmp/one.dump $tmp/lossy.dump || fail "the lossy LAN run differs from the one-host run"
 echo "identical; $(grep -c 're-issued' $tmp/lossy.out) re-issues reported"
+
+echo "== large requests (AHHS1-300, about 17 kB: 12 IP fragments) with 30 % of host 1's fragments lost"
+in_host ${hosts[1]} nft flush ruleset
+big="--scenario gait --joints damped --variant ahhs1 --hormones 5 --rules 300 --population 20 --generations 2 --duration 3 --seed 22 --lcm-url $url"
+start=$(date +%s.%N)
+in_host ${hosts[0]} timeout 300 "$bin/ahhs-evolve" $big --out $tmp/big-clean --workers 0 --worker-wait 20 >$tmp/big-clean.out 2>&1 ||
+  { cat $tmp/big-clean.out; fail "loss-free large-request run"; }
+clean_s=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
+# On the bridge, towards host 1 (port p1): IP fragments (offset or more-fragments set).
+in_host $sw nft add table bridge t &&
+  in_host $sw nft add chain bridge t tohost1 '{ type filter hook forward priority 0; }' &&
+  in_host $sw nft add rule bridge t tohost1 oifname p1 ip frag-off \& 0x3fff != 0 numgen random mod 10 \< 3 counter drop ||
+  fail "nftables fragment rule on the bridge"
+start=$(date +%s.%N)
+in_host ${hosts[0]} timeout 300 "$bin/ahhs-evolve" $big --out $tmp/big-lossy --workers 0 --worker-wait 20 >$tmp/big-lossy.out 2>&1 ||
+  { cat $tmp/big-lossy.out; fail "large-request run with fragment loss"; }
+lossy_s=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
+cmp -s <(dump $tmp/big-clean) <(dump $tmp/big-lossy) || fail "fragment loss changed the results"
+lost=$(in_host $sw nft list chain bridge t tohost1 | grep -o "packets [0-9]*" | grep -o "[0-9]*")
+[[ ${lost:-0} -gt 0 ]] || fail "no fragment was dropped"
+echo "identical; loss-free ${clean_s} s, with fragment loss ${lossy_s} s ($lost fragments dropped, $(grep -c 're-issued' $tmp/big-lossy.out) re-issues, $(grep -c 'passed over' $tmp/big-lossy.out) pass-overs)"
+# Before fair retries the last jobs went to host 1 over and over: over 360 s, or never done.
+# Each of host 1's first two lost leases costs the 3 s status grace before it is passed over;
+# the goal of 3x needs requests under one datagram (genomes sent once, by hash), not done yet.
+awk -v l="$lossy_s" -v c="$clean_s" 'BEGIN { exit !(l < 6 * c + 5) }' ||
+  fail "fragment loss: ${lossy_s} s, over 6x the loss-free ${clean_s} s (+5 s)"
 echo "PASS"

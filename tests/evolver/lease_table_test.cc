@@ -202,16 +202,39 @@ TEST_CASE("a worker that loses leases in a row is passed over for a while, not f
   CHECK_FALSE(lost[0].passed_over);
   CHECK(lost[1].passed_over);
   CHECK(t.PassedOver("a", now));
-  // Jobs 0, 1, 4, 5: b (one slot + prefetch) is ranked first while a is passed over.
+  // Jobs 0, 1, 4, 5: b (one slot + prefetch) takes two; the others wait for b, not for a.
   d = t.Schedule(now);
-  REQUIRE(d.size() == 4);
+  REQUIRE(d.size() == 2);
   CHECK(d[0].worker == "b");
   CHECK(d[1].worker == "b");
-  CHECK(d[2].worker == "a");  // b is full: a still works, it is only ranked last
-  // After the pass-over time a is ranked by capacity again; a valid result clears its losses.
+  CHECK(t.OnResult(d[0].job, d[0].attempt, "b", true, now) == LeaseTable::Verdict::kAccepted);
+  d = t.Schedule(now);
+  REQUIRE(d.size() == 1);
+  CHECK(d[0].worker == "b");
+  // After the pass-over time a gets jobs again; a valid result clears its losses.
   now += milliseconds(5001);
+  heard({});
   CHECK_FALSE(t.PassedOver("a", now));
-  CHECK(t.OnResult(d[2].job, d[2].attempt, "a", true, now) == LeaseTable::Verdict::kAccepted);
+  d = t.Schedule(now);
+  REQUIRE(d.size() == 1);
+  CHECK(d[0].worker == "a");
+  CHECK(t.OnResult(d[0].job, d[0].attempt, "a", true, now) == LeaseTable::Verdict::kAccepted);
+}
+
+TEST_CASE("when every live worker is passed over, they still get jobs") {
+  auto o = Options();
+  o.pass_over_after = 1;
+  LeaseTable t(o);
+  t.AddJob(0);
+  t.OnWorkerStatus("a", 1, {}, 0, t0);
+  REQUIRE(t.Schedule(t0).size() == 1);
+  const auto t1 = t0 + milliseconds(1001);
+  t.OnWorkerStatus("a", 1, {0}, 0, t1 - milliseconds(1));
+  REQUIRE(t.Expire(t1).size() == 1);
+  CHECK(t.PassedOver("a", t1));
+  const auto d = t.Schedule(t1);
+  REQUIRE(d.size() == 1);
+  CHECK(d[0].worker == "a");
 }
 
 TEST_CASE("a worker restarted under the same id loses its leases at once, not after the grace") {

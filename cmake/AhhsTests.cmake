@@ -1,5 +1,6 @@
 # Test helpers. Labels: unit (in-process, memq://), multiprocess (real processes over udpm:// in a
-# private network namespace), lan (network-namespace hosts joined by veth), style.
+# private network namespace), lan (network-namespace hosts joined by veth), chaos (a soak with
+# kill -9 and loss), style.
 # Tests that cannot run here (no namespaces, not root) exit 77 and CTest reports them skipped.
 
 set(AHHS_SKIP_RETURN_CODE 77)
@@ -35,7 +36,7 @@ function(ahhs_add_script_test)
     ENVIRONMENT "AHHS_SOURCE_DIR=${PROJECT_SOURCE_DIR};AHHS_BINARY_DIR=${PROJECT_BINARY_DIR}")
   # Real processes over real sockets run alone: on a loaded 2-core machine an unpaced lockstep
   # episode outruns lcm-logger and the kernel's socket buffers.
-  if("multiprocess" IN_LIST ARG_LABELS OR "lan" IN_LIST ARG_LABELS)
+  if("multiprocess" IN_LIST ARG_LABELS OR "lan" IN_LIST ARG_LABELS OR "chaos" IN_LIST ARG_LABELS)
     set_tests_properties(${ARG_NAME} PROPERTIES RUN_SERIAL TRUE)
   endif()
 endfunction()

@@ -55,7 +55,14 @@ void FitnessNode::OnState(const sim_state_t& m) {
 
 void FitnessNode::OnClock(const sim_clock_t& m) {
   if (!monitor_ || m.episode != episode_ || final_) return;
-  if (m.run_state == sim_clock_t::FINISHED) {
+  if (m.run_state == sim_clock_t::FINISHED && monitor_->states_seen() == 0) {
+    // Nothing was measured: fitness 0 would be a silent wrong answer.
+    final_ = Message(true, fitness_t::ERROR,
+                     "no valid SIM/STATE arrived for episode " + std::to_string(episode_) + " (" +
+                         std::to_string(m.tick) +
+                         " ticks): a tracker must send one state per tick with the episode and "
+                         "tick of SIM/CLOCK (docs/protocol.md)");
+  } else if (m.run_state == sim_clock_t::FINISHED) {
     final_ = Message(true, fitness_t::OK, "");
   } else if (m.run_state == sim_clock_t::FAILED) {
     final_ = Message(true, fitness_t::ERROR, "the simulation failed (physics blew up)");

@@ -38,6 +38,8 @@ class ArenaChannels {
 };
 
 inline constexpr const char* kEvalRequestChannel = "EVAL/REQUEST";
+inline constexpr const char* kEvalGenomeChannel = "EVAL/GENOME";
+inline constexpr const char* kEvalWantChannel = "EVAL/WANT";
 inline constexpr const char* kEvalResultChannel = "EVAL/RESULT";
 inline constexpr const char* kWorkerStatusChannel = "WORKER/STATUS";
 

@@ -8,6 +8,7 @@
 #include <ahhs/eval_request_t.hpp>
 #include <ahhs/eval_result_t.hpp>
 #include <ahhs/fitness_t.hpp>
+#include <ahhs/genome_want_t.hpp>
 #include <ahhs/module_status_t.hpp>
 #include <ahhs/sim_control_t.hpp>
 #include <ahhs/worker_status_t.hpp>
@@ -41,6 +42,9 @@ inline std::array<const std::string*, 3> TextFields(const eval_result_t& m) {
   return {&m.run, &m.worker, &m.message};
 }
 inline std::array<const std::string*, 1> TextFields(const fitness_t& m) { return {&m.message}; }
+inline std::array<const std::string*, 2> TextFields(const genome_want_t& m) {
+  return {&m.run, &m.worker};
+}
 inline std::array<const std::string*, 1> TextFields(const module_status_t& m) {
   return {&m.message};
 }

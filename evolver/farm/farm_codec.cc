@@ -1,13 +1,29 @@
 #include "evolver/farm/farm_codec.h"
 
+#include <algorithm>
 #include <limits>
 
 #include "bus/channels.h"
+#include "bus/codec.h"
 #include "bus/wire_text.h"
 #include "modules/node/genome_codec.h"
 #include "sim/node/sim_codec.h"
 
 namespace ahhs::evolver {
+
+EncodedGenome EncodeGenome(const modules::Genome& genome) {
+  const genome_t msg = modules::GenomeMessage(genome, 0);  // the job id travels in the request
+  return {static_cast<std::uint64_t>(msg.genome_hash), bus::Encode(msg)};
+}
+
+std::string DecodeGenome(const std::vector<std::uint8_t>& bytes, std::uint64_t hash,
+                         modules::Genome* out) {
+  genome_t msg;
+  if (!bus::Decode(bytes.data(), bytes.size(), &msg)) return "its pieces do not decode";
+  if (static_cast<std::uint64_t>(msg.genome_hash) != hash)
+    return "its pieces are another genome than the request names";
+  return modules::GenomeFromMessage(msg, out);
+}
 
 eval_request_t RequestMessage(const FarmJob& job) {
   eval_request_t m;
@@ -20,7 +36,9 @@ eval_request_t RequestMessage(const FarmJob& job) {
   sim::ScenarioToWire(job.config, &m);
   m.seed = static_cast<std::int64_t>(job.seed);
   m.deadline_utime = job.deadline_utime;
-  m.genome = modules::GenomeMessage(job.genome, 0);  // the job id travels in `job`
+  m.genome_hash = static_cast<std::int64_t>(job.genome_hash);
+  m.genome_bytes = job.genome_bytes;
+  m.genome_chunks = static_cast<std::int16_t>(job.genome_chunks);
   return m;
 }
 
@@ -35,10 +53,66 @@ std::string JobFromMessage(const eval_request_t& m, FarmJob* out) {
   if (!config_error.empty()) return config_error;
   job.seed = static_cast<std::uint64_t>(m.seed);
   job.deadline_utime = m.deadline_utime;
-  const std::string genome_error = modules::GenomeFromMessage(m.genome, &job.genome);
-  if (!genome_error.empty()) return "genome: " + genome_error;
+  if (m.genome_bytes < 0 || m.genome_bytes > kMaxGenomeBytes)
+    return "genome: size " + std::to_string(m.genome_bytes) + " out of range";
+  if (m.genome_chunks < 1 || m.genome_chunks > std::max(1, m.genome_bytes))
+    return "genome: " + std::to_string(m.genome_chunks) + " pieces for " +
+           std::to_string(m.genome_bytes) + " bytes";
+  job.genome_hash = static_cast<std::uint64_t>(m.genome_hash);
+  job.genome_bytes = m.genome_bytes;
+  job.genome_chunks = m.genome_chunks;
   *out = std::move(job);
   return "";
+}
+
+genome_chunk_t PieceMessage(const GenomePiece& p) {
+  genome_chunk_t m;
+  m.utime = bus::NowUtime();
+  m.protocol_version = kFarmProtocolVersion;
+  m.genome_hash = static_cast<std::int64_t>(p.genome_hash);
+  m.genome_bytes = p.genome_bytes;
+  m.index = static_cast<std::int16_t>(p.index);
+  m.count = static_cast<std::int16_t>(p.count);
+  m.size = static_cast<std::int16_t>(p.data.size());
+  m.data = p.data;
+  return m;
+}
+
+std::string PieceFromMessage(const genome_chunk_t& m, GenomePiece* out) {
+  GenomePiece p;
+  p.genome_hash = static_cast<std::uint64_t>(m.genome_hash);
+  p.genome_bytes = m.genome_bytes;
+  p.index = m.index;
+  p.count = m.count;
+  p.data = m.data;
+  const std::string error = CheckPiece(p);
+  if (!error.empty()) return error;
+  *out = std::move(p);
+  return "";
+}
+
+genome_want_t WantMessage(const GenomeWant& w) {
+  genome_want_t m;
+  m.utime = bus::NowUtime();
+  m.protocol_version = w.protocol_version;
+  m.run = w.run;
+  m.worker = w.worker;
+  m.genome_hash = static_cast<std::int64_t>(w.genome_hash);
+  const std::size_t n =
+      std::min<std::size_t>(w.missing.size(), std::numeric_limits<std::int16_t>::max());
+  m.num_missing = static_cast<std::int16_t>(n);
+  for (std::size_t k = 0; k < n; ++k) m.missing.push_back(static_cast<std::int16_t>(w.missing[k]));
+  return m;
+}
+
+GenomeWant WantFromMessage(const genome_want_t& m) {
+  GenomeWant w;
+  w.protocol_version = m.protocol_version;
+  w.run = m.run;
+  w.worker = m.worker;
+  w.genome_hash = static_cast<std::uint64_t>(m.genome_hash);
+  w.missing.assign(m.missing.begin(), m.missing.end());
+  return w;
 }
 
 eval_result_t ResultMessage(const FarmResult& o) {

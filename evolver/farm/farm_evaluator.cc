@@ -19,6 +19,9 @@ FarmEvaluator::FarmEvaluator(bus::Bus* bus, FarmOptions options, Hooks hooks)
   subscriptions_.push_back(bus::SubscribeTyped<eval_result_t>(
       *bus_, bus::kEvalResultChannel,
       [this](const std::string&, const eval_result_t& m) { OnResult(m); }, &counters_.results));
+  subscriptions_.push_back(bus::SubscribeTyped<genome_want_t>(
+      *bus_, bus::kEvalWantChannel,
+      [this](const std::string&, const genome_want_t& m) { OnWant(m); }, &counters_.wants_decoded));
 }
 
 FarmEvaluator::~FarmEvaluator() = default;
@@ -42,6 +45,12 @@ void FarmEvaluator::OnResult(const eval_result_t& msg) {
   inbox_.push_back(OutcomeFromMessage(msg));
 }
 
+void FarmEvaluator::OnWant(const genome_want_t& msg) {
+  if (msg.run != options_.run || msg.protocol_version != kFarmProtocolVersion) return;
+  ++counters_.wants;
+  wants_.push_back(WantFromMessage(msg));
+}
+
 int FarmEvaluator::WaitForWorkers(int count, std::chrono::milliseconds timeout) {
   const auto end = FarmClock::now() + timeout;
   while (static_cast<int>(seen_.size()) < count && FarmClock::now() < end && !hooks_.interrupted())
@@ -57,6 +66,14 @@ struct FarmEvaluator::Batch {
   std::map<std::int64_t, std::size_t> slot_of;  // job id -> position in `jobs`
   std::vector<Evaluation> results;
   FarmClock::time_point last_worker_seen = FarmClock::now();
+  // The genomes of this batch, by hash, once a job needed them: their pieces and when each
+  // piece last went out.
+  struct Sent {
+    std::vector<GenomePiece> pieces;
+    std::vector<FarmClock::time_point> at;
+  };
+  std::map<std::uint64_t, Sent> genomes;
+  std::vector<std::uint64_t> hash_of;  // per job slot, once sent
 };
 
 std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>& jobs) {
@@ -68,6 +85,8 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
     batch.table.AddJob(id);
   }
   batch.results.resize(jobs.size());
+  batch.hash_of.resize(jobs.size());
+  wants_.clear();
   std::size_t last_done = 0;
   auto last_turn = FarmClock::now();
   while (!batch.table.AllDone()) {
@@ -94,6 +113,7 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
     CheckWorkers(&batch, now);
     bus_->Handle(std::chrono::milliseconds(20));
     TakeResults(&batch, FarmClock::now());
+    AnswerWants(&batch, FarmClock::now());
     if (batch.table.done() != last_done) {
       last_done = batch.table.done();
       hooks_.progress(last_done, jobs.size());
@@ -131,10 +151,49 @@ void FarmEvaluator::Dispatch(Batch* batch, FarmClock::time_point now) {
     job.deadline_utime =
         bus::NowUtime() +
         std::chrono::duration_cast<std::chrono::microseconds>(options_.lease.job_deadline).count();
-    job.genome = *j.genome;
+    SendGenome(batch, batch->slot_of.at(d.job), &job);
     bus::PublishTyped(*bus_, bus::kEvalRequestChannel, RequestMessage(job));
     ++counters_.dispatched;
   }
+}
+
+void FarmEvaluator::SendGenome(Batch* batch, std::size_t slot, FarmJob* job) {
+  std::uint64_t& hash = batch->hash_of[slot];
+  if (hash == 0 || batch->genomes.count(hash) == 0) {
+    EncodedGenome encoded = EncodeGenome(*batch->jobs[slot].genome);
+    hash = encoded.hash;
+    auto [it, first] = batch->genomes.try_emplace(hash);
+    if (first) {  // a genome several jobs share goes out once
+      it->second.pieces = SplitGenome(hash, encoded.bytes);
+      it->second.at.assign(it->second.pieces.size(), FarmClock::now());
+      for (const GenomePiece& p : it->second.pieces)
+        bus::PublishTyped(*bus_, bus::kEvalGenomeChannel, PieceMessage(p));
+      counters_.pieces_sent += static_cast<std::int64_t>(it->second.pieces.size());
+      ++counters_.genomes_sent;
+    }
+  }
+  const Batch::Sent& sent = batch->genomes.at(hash);
+  job->genome_hash = hash;
+  job->genome_bytes = sent.pieces.front().genome_bytes;
+  job->genome_chunks = static_cast<int>(sent.pieces.size());
+}
+
+void FarmEvaluator::AnswerWants(Batch* batch, FarmClock::time_point now) {
+  for (const GenomeWant& w : wants_) {
+    auto it = batch->genomes.find(w.genome_hash);
+    if (it == batch->genomes.end()) continue;  // not a genome of this generation
+    Batch::Sent& sent = it->second;
+    for (int index : w.missing) {
+      if (index < 0 || static_cast<std::size_t>(index) >= sent.pieces.size()) continue;
+      const auto k = static_cast<std::size_t>(index);
+      if (now - sent.at[k] < options_.piece_resend) continue;  // several workers asked
+      bus::PublishTyped(*bus_, bus::kEvalGenomeChannel, PieceMessage(sent.pieces[k]));
+      sent.at[k] = now;
+      ++counters_.pieces_sent;
+      ++counters_.pieces_resent;
+    }
+  }
+  wants_.clear();
 }
 
 void FarmEvaluator::CheckWorkers(Batch* batch, FarmClock::time_point now) {

@@ -1,11 +1,14 @@
 // The evolver's side of the evaluation farm (docs/protocol.md, "Evaluation farm"): a
 // FitnessEvaluator that hands a generation's jobs to the workers heard on WORKER/STATUS,
-// collects EVAL/RESULT and re-issues what is lost, late or invalid (LeaseTable). Which worker
+// collects EVAL/RESULT and re-issues what is lost, late or invalid (LeaseTable). Each genome's
+// pieces go out on EVAL/GENOME once per generation, before its first request; the pieces a
+// worker asks for on EVAL/WANT go out again, each at most every `piece_resend`. Which worker
 // evaluated what never changes the results: an evaluation is a pure function of (scenario,
 // genome, seed).
 #pragma once
 
 #include <ahhs/eval_result_t.hpp>
+#include <ahhs/genome_want_t.hpp>
 #include <ahhs/worker_status_t.hpp>
 #include <chrono>
 #include <cstdint>
@@ -42,15 +45,20 @@ struct FarmOptions {
   int quarantine_after = 3;
   // Give up when no usable worker has been heard for this long while jobs wait.
   std::chrono::milliseconds no_worker_timeout{60000};
+  std::chrono::milliseconds piece_resend{100};
 };
 
 struct FarmCounters {
   std::int64_t dispatched = 0;
-  std::int64_t reissued = 0;              // leases ended without a valid result
-  std::int64_t invalid_results = 0;       // error status or non-finite fitness
-  std::int64_t duplicates = 0;            // results ignored (late, repeated, unknown)
-  std::int64_t states_missed = 0;         // reported by process arenas
-  bus::DecodeCounters results, statuses;  // garbage on the farm channels is dropped here
+  std::int64_t reissued = 0;         // leases ended without a valid result
+  std::int64_t invalid_results = 0;  // error status or non-finite fitness
+  std::int64_t duplicates = 0;       // results ignored (late, repeated, unknown)
+  std::int64_t states_missed = 0;    // reported by process arenas
+  std::int64_t genomes_sent = 0;     // genomes whose pieces went out (once per generation)
+  std::int64_t pieces_sent = 0;      // EVAL/GENOME messages, first sends and resends
+  std::int64_t pieces_resent = 0;    // of which sent again on EVAL/WANT
+  std::int64_t wants = 0;            // EVAL/WANT of this run heard
+  bus::DecodeCounters results, statuses, wants_decoded;  // garbage on the farm channels
 };
 
 class FarmEvaluator : public FitnessEvaluator {
@@ -87,12 +95,16 @@ class FarmEvaluator : public FitnessEvaluator {
   };
   void OnStatus(const worker_status_t& msg);
   void OnResult(const eval_result_t& msg);
+  void OnWant(const genome_want_t& msg);
   // The steps of one Evaluate() round.
   struct Batch;
   void FeedStatuses(Batch* batch, FarmClock::time_point now);
   void Dispatch(Batch* batch, FarmClock::time_point now);
   void CheckWorkers(Batch* batch, FarmClock::time_point now);
   void TakeResults(Batch* batch, FarmClock::time_point heard);
+  void AnswerWants(Batch* batch, FarmClock::time_point now);
+  // Publishes the genome of jobs[slot] the first time a job of the batch needs it.
+  void SendGenome(Batch* batch, std::size_t slot, FarmJob* job);
   void OnInvalid(Batch* batch, const FarmResult& result, bool failed);
 
   bus::Bus* bus_;
@@ -107,6 +119,7 @@ class FarmEvaluator : public FitnessEvaluator {
   std::set<std::string> quarantined_;
   std::set<std::string> declined_;  // workers that refused a job: they serve another run only
   std::vector<FarmResult> inbox_;   // results received during the current Handle()
+  std::vector<GenomeWant> wants_;   // wants received during the current Handle()
 };
 
 }  // namespace ahhs::evolver

@@ -1,6 +1,7 @@
 // The evaluation farm's messages as plain structs (docs/protocol.md, "Evaluation farm"), with
-// no LCM: EVAL/REQUEST (evolver -> one worker), EVAL/RESULT (worker -> evolver), WORKER/STATUS
-// (worker -> all, about 1 Hz and on every change).
+// no LCM: EVAL/REQUEST (evolver -> one worker), EVAL/GENOME (evolver -> all: a genome's pieces,
+// see genome_pieces.h), EVAL/WANT (worker -> evolver: missing pieces), EVAL/RESULT (worker ->
+// evolver), WORKER/STATUS (worker -> all, about 1 Hz and on every change).
 #pragma once
 
 #include <cstdint>
@@ -14,7 +15,7 @@ namespace ahhs::evolver {
 
 // Bumped whenever a message of the farm changes meaning. Workers refuse requests of another
 // version; evolvers ignore workers of another version (both say so).
-inline constexpr int kFarmProtocolVersion = 1;
+inline constexpr int kFarmProtocolVersion = 2;  // 2: genomes by reference (EVAL/GENOME)
 
 // A run on the wire is "RUN_ID/sSESSION" (ahhs-evolve). A worker that serves one run only names
 // its RUN_ID in every status; a status's run matches a wire run when it is the same or its id.
@@ -32,7 +33,20 @@ struct FarmJob {
   sim::ScenarioConfig config;
   std::uint64_t seed = 0;
   std::int64_t deadline_utime = 0;  // microseconds since the epoch
+  // The genome by reference, as on the wire; `genome` is filled once its pieces are assembled.
+  std::uint64_t genome_hash = 0;
+  int genome_bytes = 0;
+  int genome_chunks = 0;
   modules::Genome genome;
+};
+
+// A worker's request for the pieces of a genome it misses (EVAL/WANT).
+struct GenomeWant {
+  int protocol_version = kFarmProtocolVersion;
+  std::string run;
+  std::string worker;
+  std::uint64_t genome_hash = 0;
+  std::vector<int> missing;  // piece indexes
 };
 
 struct FarmResult {

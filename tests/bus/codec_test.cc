@@ -13,7 +13,8 @@ TEMPLATE_TEST_CASE("decode rejects truncated, extended and wrong-type bytes", "[
                    ahhs::module_sensors_t, ahhs::hinge_command_t, ahhs::hormone_packet_t,
                    ahhs::module_status_t, ahhs::topology_t, ahhs::sim_control_t, ahhs::sim_clock_t,
                    ahhs::sim_state_t, ahhs::genome_t, ahhs::fitness_t, ahhs::eval_request_t,
-                   ahhs::eval_result_t, ahhs::worker_status_t) {
+                   ahhs::eval_result_t, ahhs::worker_status_t, ahhs::genome_chunk_t,
+                   ahhs::genome_want_t) {
   const auto bytes = Encode(ahhs::testing::Fixture<TestType>());
   TestType out;
   REQUIRE(Decode(bytes.data(), bytes.size(), &out));

@@ -92,7 +92,7 @@ TEMPLATE_TEST_CASE("TextFields lists every string field of the type's .lcm file"
                    ahhs::module_status_t, ahhs::module_trace_t, ahhs::topology_t,
                    ahhs::sim_control_t, ahhs::sim_clock_t, ahhs::sim_state_t, ahhs::genome_t,
                    ahhs::fitness_t, ahhs::eval_request_t, ahhs::eval_result_t,
-                   ahhs::worker_status_t) {
+                   ahhs::worker_status_t, ahhs::genome_chunk_t, ahhs::genome_want_t) {
   const TestType msg{};
   CHECK(static_cast<int>(ahhs::bus::TextFields(msg).size()) ==
         StringFieldsInLcmFile(TestType::getTypeName()));

@@ -5,6 +5,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <memory>
+#include <random>
 
 #include "bus/channels.h"
 #include "bus/lcm_bus.h"
@@ -197,7 +200,7 @@ TEST_CASE("a worker refuses a request of another protocol version and says why")
       [&](const std::string&, const eval_result_t& r) { results.push_back(r); });
   Batch batch(1);
   FarmJob job;
-  job.protocol_version = 2;
+  job.protocol_version = kFarmProtocolVersion + 1;
   job.run = "r";
   job.job = 5;
   job.worker = "w";
@@ -268,7 +271,20 @@ FarmJob OneJob(const std::string& worker) {
   job.config.kind = sim::ScenarioKind::kPendulum;
   job.config.num_modules = 2;
   job.genome = batch.genomes[0];
+  job.deadline_utime = bus::NowUtime() + 10'000'000;
   return job;
+}
+
+// Publishes the job's genome pieces (unless `pieces` is false), then its request.
+void SendJob(bus::Bus& bus, FarmJob job, bool pieces = true) {
+  const EncodedGenome encoded = EncodeGenome(job.genome);
+  const auto split = SplitGenome(encoded.hash, encoded.bytes);
+  job.genome_hash = encoded.hash;
+  job.genome_bytes = static_cast<int>(encoded.bytes.size());
+  job.genome_chunks = static_cast<int>(split.size());
+  if (pieces)
+    for (const auto& p : split) bus::PublishTyped(bus, bus::kEvalGenomeChannel, PieceMessage(p));
+  bus::PublishTyped(bus, bus::kEvalRequestChannel, RequestMessage(job));
 }
 }  // namespace
 
@@ -298,7 +314,7 @@ TEST_CASE("a result the bus does not send is counted and answered by an error re
   auto subscription = bus::SubscribeTyped<eval_result_t>(
       bus, bus::kEvalResultChannel,
       [&](const std::string&, const eval_result_t& r) { results.push_back(r); });
-  bus::PublishTyped(bus, bus::kEvalRequestChannel, RequestMessage(OneJob("w")));
+  SendJob(bus, OneJob("w"));
   worker.Poll(std::chrono::milliseconds(10));  // takes the request
   worker.Poll(std::chrono::milliseconds(0));   // evaluates; the result is refused
   bus.Handle(std::chrono::milliseconds(0));
@@ -308,4 +324,184 @@ TEST_CASE("a result the bus does not send is counted and answered by an error re
   CHECK(results[0].status == eval_result_t::ERROR);
   CHECK(results[0].job == 5);
   CHECK_THAT(results[0].message, Catch::Contains("could not send the result of job 5"));
+}
+
+namespace {
+// One node's view of a shared bus that loses a seeded fraction of the messages it receives on
+// one channel (as a host behind a lossy link would).
+class LossyView final : public bus::Bus {
+ public:
+  LossyView(bus::Bus* inner, std::string channel, double drop, std::uint64_t seed)
+      : inner_(inner), channel_(std::move(channel)), drop_(drop), rng_(seed) {}
+  bool Publish(const std::string& channel, const void* data, std::size_t size) override {
+    return inner_->Publish(channel, data, size);
+  }
+  int Subscribe(const std::string& regex, bus::RawHandler handler, int capacity) override {
+    return inner_->Subscribe(
+        regex,
+        [this, handler = std::move(handler)](const std::string& channel, const std::uint8_t* data,
+                                             std::size_t size) {
+          if (channel == channel_ && std::uniform_real_distribution<>(0, 1)(rng_) < drop_) {
+            ++dropped_;
+            return;
+          }
+          handler(channel, data, size);
+        },
+        capacity);
+  }
+  void Unsubscribe(int id) override { inner_->Unsubscribe(id); }
+  int Handle(std::chrono::microseconds timeout) override { return inner_->Handle(timeout); }
+  void CountUnencodable(const std::string& channel) override { inner_->CountUnencodable(channel); }
+  const bus::BusStats& stats() const override { return inner_->stats(); }
+  int dropped() const { return dropped_; }
+
+ private:
+  bus::Bus* inner_;
+  std::string channel_;
+  double drop_;
+  std::mt19937_64 rng_;
+  int dropped_ = 0;
+};
+
+// A population of AHHS1-300 genomes (about 17 kB each on the wire, as in the LAN test).
+struct BigBatch {
+  std::vector<modules::Genome> genomes;
+  std::vector<EvaluationJob> jobs;
+  explicit BigBatch(int n) {
+    GaParams p;
+    p.population = n;
+    genomes = InitialPopulation({modules::Variant::kAhhs1, 5, 300, 4, 2}, p, 78);
+    for (int i = 0; i < n; ++i)
+      jobs.push_back({0, i, &genomes[static_cast<std::size_t>(i)], EvaluationSeed(78, 0, i)});
+  }
+};
+}  // namespace
+
+TEST_CASE("every farm message fits one datagram and each genome goes out once per generation") {
+  bus::LcmBus bus("memq://");
+  std::vector<std::unique_ptr<WorkerNode>> workers;
+  for (int w = 0; w < 2; ++w)
+    workers.push_back(std::make_unique<WorkerNode>(&bus, "w" + std::to_string(w), "host", Good,
+                                                   std::chrono::milliseconds(50)));
+  std::size_t largest = 0;
+  std::map<std::string, int> count;
+  auto spy = bus::Subscription(
+      &bus, bus.Subscribe(
+                "EVAL/.*|WORKER/STATUS",
+                [&](const std::string& channel, const std::uint8_t*, std::size_t size) {
+                  // An LCM datagram: 8-byte header, the channel and its NUL, the message.
+                  largest = std::max(largest, 8 + channel.size() + 1 + size);
+                  ++count[channel];
+                },
+                bus::kDefaultQueueCapacity));
+  FarmEvaluator::Hooks hooks;
+  hooks.interrupted = [&] {
+    for (auto& w : workers) w->Poll(std::chrono::microseconds(0));
+    return false;
+  };
+  FarmEvaluator farm(&bus, Options(), hooks);
+  BigBatch batch(6);
+  batch.genomes[5] = batch.genomes[4];  // an elite twice: its genome still goes out once
+  const auto results = farm.Evaluate(batch.jobs);
+  for (std::size_t k = 0; k < batch.jobs.size(); ++k)
+    CHECK(results[k].fitness == FakeFitness(*batch.jobs[k].genome, batch.jobs[k].seed));
+  const std::size_t genome_bytes = EncodeGenome(batch.genomes[0]).bytes.size();
+  CHECK(genome_bytes > 15000);
+  const int pieces = static_cast<int>((genome_bytes + kGenomePieceBytes - 1) / kGenomePieceBytes);
+  CHECK(largest <= 1472);  // an Ethernet MTU of 1500 less the IP and UDP headers
+  CHECK(count["EVAL/GENOME"] == 5 * pieces);
+  CHECK(farm.counters().genomes_sent == 5);
+  CHECK(farm.counters().pieces_resent == 0);
+  CHECK(count["EVAL/REQUEST"] == 6);
+  CHECK(count["EVAL/WANT"] == 0);
+}
+
+TEST_CASE("workers that lose pieces ask for them and give the same results, with no re-issue") {
+  bus::LcmBus bus("memq://");
+  std::vector<std::unique_ptr<LossyView>> views;
+  std::vector<std::unique_ptr<WorkerNode>> workers;
+  for (int w = 0; w < 2; ++w) {
+    views.push_back(std::make_unique<LossyView>(&bus, bus::kEvalGenomeChannel, 0.3, 11 + w));
+    workers.push_back(std::make_unique<WorkerNode>(views.back().get(), "w" + std::to_string(w),
+                                                   "host", Good, std::chrono::milliseconds(50),
+                                                   std::chrono::milliseconds(20)));
+  }
+  FarmEvaluator::Hooks hooks;
+  hooks.interrupted = [&] {
+    for (auto& w : workers) w->Poll(std::chrono::microseconds(0));
+    return false;
+  };
+  FarmOptions options = Options();
+  options.piece_resend = std::chrono::milliseconds(10);
+  FarmEvaluator farm(&bus, options, hooks);
+  BigBatch batch(8);
+  const auto results = farm.Evaluate(batch.jobs);
+  for (std::size_t k = 0; k < batch.jobs.size(); ++k)
+    CHECK(results[k].fitness == FakeFitness(*batch.jobs[k].genome, batch.jobs[k].seed));
+  CHECK(views[0]->dropped() + views[1]->dropped() > 10);
+  CHECK(workers[0]->counters().wants + workers[1]->counters().wants > 0);
+  CHECK(farm.counters().wants > 0);
+  CHECK(farm.counters().pieces_resent > 0);
+  CHECK(farm.counters().reissued == 0);
+  CHECK(workers[0]->counters().evaluations + workers[1]->counters().evaluations == 8);
+}
+
+TEST_CASE("a job whose genome never comes is dropped at its deadline, asked for until then") {
+  bus::LcmBus bus("memq://");
+  WorkerNode worker(&bus, "w", "host", Good, std::chrono::milliseconds(1000),
+                    std::chrono::milliseconds(20));
+  std::vector<genome_want_t> wants;
+  auto spy = bus::SubscribeTyped<genome_want_t>(
+      bus, bus::kEvalWantChannel,
+      [&](const std::string&, const genome_want_t& w) { wants.push_back(w); });
+  FarmJob job = OneJob("w");
+  job.deadline_utime = bus::NowUtime() + 200'000;
+  SendJob(bus, job, /*pieces=*/false);
+  const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(400);
+  while (std::chrono::steady_clock::now() < end) worker.Poll(std::chrono::milliseconds(5));
+  bus.Handle(std::chrono::milliseconds(0));
+  REQUIRE(wants.size() >= 3);
+  CHECK(wants[0].run == "r");
+  CHECK(wants[0].worker == "w");
+  CHECK(static_cast<std::uint64_t>(wants[0].genome_hash) == modules::GenomeHash(job.genome));
+  CHECK(wants[0].num_missing ==
+        static_cast<int>(SplitGenome(1, EncodeGenome(job.genome).bytes).size()));
+  CHECK(worker.counters().expired_waits == 1);
+  CHECK(worker.counters().evaluations == 0);
+}
+
+TEST_CASE("pieces that are not the genome named are asked for again, then the job is refused") {
+  bus::LcmBus bus("memq://");
+  WorkerNode worker(&bus, "w", "host", Good, std::chrono::milliseconds(1000),
+                    std::chrono::milliseconds(20));
+  std::vector<eval_result_t> results;
+  auto spy = bus::SubscribeTyped<eval_result_t>(
+      bus, bus::kEvalResultChannel,
+      [&](const std::string&, const eval_result_t& r) { results.push_back(r); });
+  Batch batch(2);
+  FarmJob job = OneJob("w");
+  job.genome = batch.genomes[0];
+  // The pieces of another genome of the same size, labelled with this genome's hash.
+  const EncodedGenome other = EncodeGenome(batch.genomes[1]);
+  const std::uint64_t hash = EncodeGenome(job.genome).hash;
+  REQUIRE(other.bytes.size() == EncodeGenome(job.genome).bytes.size());
+  auto send_wrong_pieces = [&] {
+    for (const auto& p : SplitGenome(hash, other.bytes))
+      bus::PublishTyped(bus, bus::kEvalGenomeChannel, PieceMessage(p));
+  };
+  send_wrong_pieces();
+  SendJob(bus, job, /*pieces=*/false);
+  worker.Poll(std::chrono::milliseconds(10));
+  worker.Poll(std::chrono::milliseconds(10));
+  CHECK(worker.counters().damaged_genomes == 1);
+  CHECK(results.empty());  // asked again first
+  send_wrong_pieces();
+  worker.Poll(std::chrono::milliseconds(10));
+  worker.Poll(std::chrono::milliseconds(10));
+  bus.Handle(std::chrono::milliseconds(0));
+  CHECK(worker.counters().damaged_genomes == 2);
+  REQUIRE(results.size() == 1);
+  CHECK(results[0].status == eval_result_t::ERROR);
+  CHECK_THAT(results[0].message, Catch::Contains("another genome than the request names"));
+  CHECK(worker.counters().evaluations == 0);
 }

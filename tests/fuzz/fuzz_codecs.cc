@@ -1,9 +1,12 @@
 // The wire <-> domain translators of the farm, the genome and the sim: whatever decodes is
 // either refused by the translator with a message or becomes a domain value that translates
 // back into a message that encodes (a worker must always be able to answer what it was sent).
+// A genome piece that completes a genome alone yields that genome or a refusal.
 #include <ahhs/eval_request_t.hpp>
 #include <ahhs/eval_result_t.hpp>
+#include <ahhs/genome_chunk_t.hpp>
 #include <ahhs/genome_t.hpp>
+#include <ahhs/genome_want_t.hpp>
 #include <ahhs/sim_control_t.hpp>
 #include <ahhs/worker_status_t.hpp>
 #include <cstddef>
@@ -34,6 +37,32 @@ void Request(const std::uint8_t* data, std::size_t size) {
   answer.message = "bad request: " + m.scenario;
   FUZZ_CONTRACT(!bus::Encode(evolver::ResultMessage(answer)).empty(),
                 "the answer to an accepted request does not encode");
+}
+
+void Piece(const std::uint8_t* data, std::size_t size) {
+  genome_chunk_t m;
+  if (!bus::Decode(data, size, &m)) return;
+  evolver::GenomePiece piece;
+  if (!evolver::PieceFromMessage(m, &piece).empty()) return;
+  FUZZ_CONTRACT(!bus::Encode(evolver::PieceMessage(piece)).empty(),
+                "an accepted genome piece does not encode again");
+  evolver::GenomeCache cache(1 << 20);
+  cache.Add(piece);
+  FUZZ_CONTRACT(cache.bytes() <= (1u << 20) + piece.data.size(),
+                "the genome cache outgrows its bound");
+  const auto* whole = cache.Find(piece.genome_hash);
+  if (whole == nullptr) return;
+  modules::Genome g;
+  if (!evolver::DecodeGenome(*whole, piece.genome_hash, &g).empty()) return;
+  FUZZ_CONTRACT(evolver::EncodeGenome(g).hash == piece.genome_hash,
+                "an assembled genome is not the genome its hash names");
+}
+
+void Want(const std::uint8_t* data, std::size_t size) {
+  genome_want_t m;
+  if (!bus::Decode(data, size, &m)) return;
+  FUZZ_CONTRACT(!bus::Encode(evolver::WantMessage(evolver::WantFromMessage(m))).empty(),
+                "a decoded genome want does not encode again");
 }
 
 void Result(const std::uint8_t* data, std::size_t size) {
@@ -75,6 +104,8 @@ void Control(const std::uint8_t* data, std::size_t size) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   Request(data, size);
+  Piece(data, size);
+  Want(data, size);
   Result(data, size);
   Status(data, size);
   Genome(data, size);

@@ -35,7 +35,8 @@ TEMPLATE_TEST_CASE("every message type encodes to its golden bytes", "[lcmtypes]
                    ahhs::module_sensors_t, ahhs::hinge_command_t, ahhs::hormone_packet_t,
                    ahhs::module_status_t, ahhs::topology_t, ahhs::sim_control_t, ahhs::sim_clock_t,
                    ahhs::sim_state_t, ahhs::genome_t, ahhs::fitness_t, ahhs::eval_request_t,
-                   ahhs::eval_result_t, ahhs::worker_status_t, ahhs::module_trace_t) {
+                   ahhs::eval_result_t, ahhs::worker_status_t, ahhs::module_trace_t,
+                   ahhs::genome_chunk_t, ahhs::genome_want_t) {
   const TestType msg = ahhs::testing::Fixture<TestType>();
   const auto bytes = ahhs::bus::Encode(msg);
   REQUIRE(bytes.size() == static_cast<std::size_t>(msg.getEncodedSize()));

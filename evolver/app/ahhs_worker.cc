@@ -80,6 +80,19 @@ int main(int argc, char** argv) {
       app.add_option("--arena-url", arena_url,
                      "LCM URL of the process arena's own traffic (--arena-kind processes; default: "
                      "host-only multicast on a port of this worker's own)");
+  std::string external, arena_name;
+  int external_timeout_s = 60;
+  auto* external_option = app.add_option(
+      "--external", external,
+      "roles of the process arena that others play (hardware, other languages): sim, fitness, "
+      "module:N[,M...] or modules (docs/hardware.md); needs --arena-name and --arena-url");
+  auto* arena_name_option = app.add_option(
+      "--arena-name", arena_name,
+      "channel prefix of the process arena (default W<pid>; the external roles must use it)");
+  app.add_option("--external-timeout", external_timeout_s,
+                 "seconds an episode waits for the external roles to answer")
+      ->check(CLI::Range(1, 86400))
+      ->capture_default_str();
   app.add_option("--id", id, "worker id, unique on the bus (default: host:pid)")->check(wire_text);
   app.add_flag("-v,--verbose", verbose, "print a line per evaluation");
   app.add_flag("-q,--quiet", quiet, "print errors only");
@@ -89,6 +102,28 @@ int main(int argc, char** argv) {
     std::cerr << "ahhs-worker: say which run to serve: --run RUN_ID (ahhs-evolve prints it) or "
                  "--any-run\n";
     return ahhs::cli::kExitUsage;
+  }
+  if (external_option->count() > 0) {
+    std::string why;
+    if (arena != "processes")
+      why = "--external needs --arena-kind processes";
+    else if (arena_name_option->count() == 0 || arena_url_option->count() == 0)
+      why =
+          "--external needs --arena-name NAME and --arena-url URL: the external roles must "
+          "know the arena";
+    else if (slots != 1)
+      why = "--external serves one organism: --slots must be 1";
+    else {
+      try {
+        ahhs::arena::ParseExternalRoles(external, 1 << 15);  // modules checked per scenario
+      } catch (const std::exception& e) {
+        why = e.what();
+      }
+    }
+    if (!why.empty()) {
+      std::cerr << "ahhs-worker: " << why << '\n';
+      return ahhs::cli::kExitUsage;
+    }
   }
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
@@ -138,7 +173,9 @@ int main(int argc, char** argv) {
     ahhs::arena::ArenaOptions arena_options;
     arena_options.kind = ahhs::arena::ParseArenaKind(arena);
     arena_options.url = arena_url;
-    arena_options.name = "W" + std::to_string(getpid());
+    arena_options.name = arena_name.empty() ? "W" + std::to_string(getpid()) : arena_name;
+    arena_options.external = external;
+    arena_options.external_timeout = std::chrono::seconds(external_timeout_s);
     ev::ArenaEvaluator evaluator(arena_options);
     auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
     ev::WorkerNode node(bus.get(), id, host, [&](const ev::FarmJob& job) {
@@ -151,7 +188,11 @@ int main(int argc, char** argv) {
     });
     if (!quiet)
       std::cerr << "ahhs-worker " << id << ": serving " << (run.empty() ? "any run" : "run " + run)
-                << " (" << arena << " arena) on " << url << '\n';
+                << " (" << arena << " arena"
+                << (external.empty()
+                        ? std::string()
+                        : " " + arena_options.name + " on " + arena_url + ", external: " + external)
+                << ") on " << url << '\n';
     if (!run.empty()) node.ServeOnlyRun(run);
     node.Serve([&] { return g_stop.load(); });
     const auto& c = node.counters();

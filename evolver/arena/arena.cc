@@ -56,14 +56,21 @@ class ProcessesArena : public Arena {
 std::unique_ptr<Arena> MakeArena(const ArenaOptions& options, const sim::ScenarioConfig& config) {
   switch (options.kind) {
     case ArenaKind::kDirect:
+      if (!options.external.empty())
+        throw std::invalid_argument("external roles need the process arena");
       return std::make_unique<DirectArena>();
     case ArenaKind::kFused:
+      if (!options.external.empty())
+        throw std::invalid_argument("external roles need the process arena");
       return std::make_unique<FusedArena>();
     case ArenaKind::kProcesses: {
       ProcessArenaOptions o;
       o.url = options.url;
       o.arena = options.name;
       o.num_modules = sim::ShapeOf(config).compartments;
+      if (!options.external.empty())
+        o.external = ParseExternalRoles(options.external, o.num_modules);
+      o.external_timeout = options.external_timeout;
       return std::make_unique<ProcessesArena>(o);
     }
   }

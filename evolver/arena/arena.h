@@ -6,6 +6,7 @@
 // Every kind gives the same EpisodeResult to the bit (tests/arena, tests/evolver).
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -31,10 +32,15 @@ struct ArenaOptions {
   // The process arena only: LCM URL and channel prefix of its own traffic.
   std::string url;
   std::string name = "AHHS";
+  // Roles others play (ParseExternalRoles text, checked against each scenario's modules), and
+  // how long an episode waits for them.
+  std::string external;
+  std::chrono::seconds external_timeout{60};
 };
 
 // An arena for episodes of `config`'s shape (the process arena starts one module per
-// compartment). Throws std::runtime_error when its processes cannot be started.
+// compartment). Throws std::runtime_error when its processes cannot be started, and
+// std::invalid_argument for external roles that do not fit the scenario.
 std::unique_ptr<Arena> MakeArena(const ArenaOptions& options, const sim::ScenarioConfig& config);
 
 }  // namespace ahhs::arena

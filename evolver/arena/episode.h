@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "evolver/arena/external_roles.h"
 #include "modules/core/genome.h"
 #include "sim/core/scenario.h"
 
@@ -19,6 +20,11 @@ struct EpisodeSpec {
   bool realtime = false;
   std::string arena = "AHHS";
   std::chrono::seconds handshake_timeout{20};
+  // Roles played by processes the arena did not start (hardware, other languages): the
+  // handshake then waits up to `external_timeout` (instead of `handshake_timeout`), and its
+  // message names them.
+  ExternalRoles external;
+  std::chrono::seconds external_timeout{60};
   // Real time only: start without the modules that have not answered after this long (a
   // physical module may come later and join the running episode).
   std::chrono::milliseconds realtime_join_wait{1500};

@@ -4,6 +4,8 @@
 #include <ahhs/module_status_t.hpp>
 #include <ahhs/sim_clock_t.hpp>
 #include <ahhs/sim_control_t.hpp>
+#include <algorithm>
+#include <cstdio>
 #include <optional>
 #include <set>
 #include <vector>
@@ -17,6 +19,15 @@ namespace ahhs::arena {
 
 using Clock = std::chrono::steady_clock;
 
+namespace {
+std::string HashText(std::int64_t hash) {
+  char text[20];
+  std::snprintf(text, sizeof text, "%016llx",
+                static_cast<unsigned long long>(static_cast<std::uint64_t>(hash)));
+  return text;
+}
+}  // namespace
+
 EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
                          const std::function<void(std::chrono::microseconds)>& pump,
                          const std::function<bool(std::string*)>& alive) {
@@ -29,10 +40,20 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
   std::int8_t run_state = -1;
   const std::int64_t ep = spec.episode;
   std::vector<bus::Subscription> subs;
+  const genome_t genome = modules::GenomeMessage(spec.genome, ep);
   auto on_status = [&](const std::string&, const module_status_t& s) {
     if (s.episode == ep &&
-        (s.state == module_status_t::READY || s.state == module_status_t::RUNNING))
+        (s.state == module_status_t::READY || s.state == module_status_t::RUNNING)) {
+      if (!modules::GenomeHashMatches(s.genome_hash,
+                                      static_cast<std::uint64_t>(genome.genome_hash))) {
+        if (result.error.empty())
+          result.error = "module " + std::to_string(s.module) + " reports genome hash " +
+                         HashText(s.genome_hash) + ", not the episode's " +
+                         HashText(genome.genome_hash) + " (it runs another genome)";
+        return;
+      }
       ready.insert(s.module);
+    }
     if (s.episode == ep && s.state == module_status_t::ERROR && result.error.empty())
       result.error = "module " + std::to_string(s.module) + " refused the episode: " + s.message;
   };
@@ -63,11 +84,11 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
   c.seed = static_cast<std::int64_t>(spec.seed);  // LCM has no unsigned type: the same 64 bits
   sim::ScenarioToWire(spec.config, &c);
   c.clock_mode = spec.realtime ? sim_control_t::MODE_REALTIME : sim_control_t::MODE_LOCKSTEP;
-  const genome_t genome = modules::GenomeMessage(spec.genome, ep);
 
   // Handshake: RESET + GENOME, repeated until the sim, every module and the monitor answered.
   const auto handshake_start = Clock::now();
-  const auto handshake_end = handshake_start + spec.handshake_timeout;
+  const auto handshake_end =
+      handshake_start + (spec.external.empty() ? spec.handshake_timeout : spec.external_timeout);
   auto next_send = Clock::now();
   std::string why;
   auto modules_ok = [&] {
@@ -79,12 +100,20 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
     if (!alive(&why)) return finish({false, 0, 0, why, 0});
     if (!result.error.empty()) return finish(result);
     if (Clock::now() > handshake_end) {
-      std::string missing = sim_ready ? "" : " the sim,";
-      if (!monitor_ready) missing += " the fitness monitor,";
+      auto ext = [](bool external) { return external ? " (external)," : ","; };
+      std::string missing = sim_ready ? "" : std::string(" the sim") + ext(spec.external.sim);
+      if (!monitor_ready)
+        missing += std::string(" the fitness monitor") + ext(spec.external.fitness);
       for (int m = 0; m < modules; ++m)
-        if (!ready.count(m)) missing += " module " + std::to_string(m) + ",";
+        if (!ready.count(m))
+          missing += " module " + std::to_string(m) + ext(spec.external.has_module(m));
       missing.pop_back();
-      return finish({false, 0, 0, "no answer to the episode handshake from" + missing, 0});
+      const auto waited =
+          std::chrono::duration_cast<std::chrono::seconds>(Clock::now() - handshake_start);
+      return finish({false, 0, 0,
+                     "no answer to the episode handshake from" + missing + " within " +
+                         std::to_string(waited.count()) + " s on arena " + spec.arena,
+                     0});
     }
     if (Clock::now() >= next_send) {
       c.command = sim_control_t::RESET;

@@ -51,15 +51,18 @@ ProcessArena::ProcessArena(ProcessArenaOptions options) : options_(std::move(opt
     // (lcm-logger queues only 30 messages; ahhs-logger's queue is unbounded, but the socket's
     // receive buffer is not).
     if (!options_.log_file.empty()) sim_args.insert(sim_args.end(), {"--min-tick-us", "3000"});
-    children_.Start("ahhs-sim", sim_args, quiet);
-    children_.Start("ahhs-fitness",
-                    {dir + "/ahhs-fitness", "--lcm-url", url, "--arena", options_.arena}, quiet);
+    const ExternalRoles& external = options_.external;
+    if (!external.sim) children_.Start("ahhs-sim", sim_args, quiet);
+    if (!external.fitness)
+      children_.Start("ahhs-fitness",
+                      {dir + "/ahhs-fitness", "--lcm-url", url, "--arena", options_.arena}, quiet);
     for (int m = 0; m < options_.num_modules; ++m)
-      children_.Start("ahhs-module " + std::to_string(m),
-                      {dir + "/ahhs-module", "--id", std::to_string(m), "--lcm-url", url, "--arena",
-                       options_.arena, "--hormone-timeout-ms",
-                       std::to_string(std::max(1, options_.lockstep_timeout_ms / 4))},
-                      quiet);
+      if (!external.has_module(m))
+        children_.Start("ahhs-module " + std::to_string(m),
+                        {dir + "/ahhs-module", "--id", std::to_string(m), "--lcm-url", url,
+                         "--arena", options_.arena, "--hormone-timeout-ms",
+                         std::to_string(std::max(1, options_.lockstep_timeout_ms / 4))},
+                        quiet);
     // Our own bus is opened after the children are forked, so that no child inherits its
     // sockets.
     bus_ = bus::OpenBusWithFaultInjection(url);
@@ -83,6 +86,8 @@ bool ProcessArena::ChildrenAlive(std::string* why) {
 EpisodeResult ProcessArena::Run(EpisodeSpec spec,
                                 const std::function<bool(std::string*)>& keep_going) {
   spec.arena = options_.arena;
+  spec.external = options_.external;
+  spec.external_timeout = options_.external_timeout;
   auto alive = [&](std::string* why) { return keep_going(why) && ChildrenAlive(why); };
   EpisodeResult result = RunEpisode(
       *bus_, spec, [&](std::chrono::microseconds w) { bus_->Handle(w); }, alive);

@@ -1,5 +1,6 @@
 // An arena of separate processes: ahhs-sim, ahhs-fitness and one ahhs-module per compartment,
-// started once and serving episode after episode on one bus (docs/protocol.md). Used by
+// started once and serving episode after episode on one bus (docs/protocol.md), except the
+// roles named external, which others play (docs/hardware.md). Used by
 // ahhs-launch for one episode and by ahhs-worker --arena-kind processes for many. Children die with
 // this process (PR_SET_PDEATHSIG) and are stopped (SIGTERM, then SIGKILL) by the destructor.
 #pragma once
@@ -15,6 +16,7 @@
 #include "bus/bus.h"
 #include "evolver/arena/children.h"
 #include "evolver/arena/episode.h"
+#include "evolver/arena/external_roles.h"
 
 namespace ahhs::arena {
 
@@ -29,6 +31,9 @@ struct ProcessArenaOptions {
   // /usr/bin/lcm-logger, whose 30-message queue can lose lockstep bursts).
   std::string logger = "ahhs-logger";
   std::string bin_dir;  // where ahhs-sim and the others are (default: next to this program)
+  // Roles not started here: every episode waits up to `external_timeout` for them.
+  ExternalRoles external;
+  std::chrono::seconds external_timeout{60};
 };
 
 class ProcessArena {

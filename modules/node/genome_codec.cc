@@ -96,4 +96,9 @@ std::string GenomeFromMessage(const genome_t& m, Genome* out) {
   return "";
 }
 
+bool GenomeHashMatches(std::int64_t reported, std::uint64_t expected) {
+  const auto bits = static_cast<std::int64_t>(expected);
+  return reported == bits || static_cast<double>(reported) == static_cast<double>(bits);
+}
+
 }  // namespace ahhs::modules

@@ -74,6 +74,15 @@ int main(int argc, char** argv) {
                  "their neighbours' packets, so that after a loss they still answer in time)")
       ->check(CLI::Range(1, 600000))
       ->capture_default_str();
+  std::string external;
+  int external_timeout_s = 60;
+  app.add_option("--external", external,
+                 "roles others play (hardware, other languages), not started here: sim, fitness, "
+                 "module:N[,M...] or modules, comma-separated (docs/hardware.md); needs --arena");
+  app.add_option("--external-timeout", external_timeout_s,
+                 "seconds to wait for the external roles to answer the handshake")
+      ->check(CLI::Range(1, 86400))
+      ->capture_default_str();
   app.add_flag("-v,--verbose", verbose, "show the children's output");
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
@@ -111,6 +120,14 @@ int main(int argc, char** argv) {
           url + "'");
     if (!fused && ahhs::bus::IsInProcessUrl(url))
       throw std::invalid_argument("'" + url + "' stays inside one process: use it with --fused");
+    if (!external.empty()) {
+      if (fused) throw std::invalid_argument("--external needs the process arena, not --fused");
+      if (arena.empty())
+        throw std::invalid_argument(
+            "--external needs --arena NAME: the external roles must know it");
+      spec.external =
+          al::ParseExternalRoles(external, ahhs::sim::ShapeOf(spec.config).compartments);
+    }
   } catch (const std::exception& e) {
     std::cerr << "ahhs-launch: " << e.what() << '\n';
     return 1;
@@ -138,7 +155,14 @@ int main(int argc, char** argv) {
       options.verbose = verbose;
       options.log_file = log_file;
       options.logger = logger;
+      options.external = spec.external;
+      options.external_timeout = std::chrono::seconds(external_timeout_s);
       al::ProcessArena arena_processes(options);
+      if (!spec.external.empty())
+        std::printf("arena %s on %s: waiting up to %d s for %s (external)\n", spec.arena.c_str(),
+                    url.c_str(), external_timeout_s,
+                    al::DescribeExternalRoles(spec.external).c_str());
+      std::fflush(stdout);
       result = arena_processes.Run(spec, [](std::string* why) {
         if (!g_interrupted) return true;
         *why = "interrupted";

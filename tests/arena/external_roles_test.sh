@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# External roles (docs/hardware.md), inside a private network namespace: ahhs-launch --external
+# starts every other role and waits for the external ones, which are separate processes here.
+#  1. a module, the sim and the fitness monitor, and the whole organism played outside the
+#     launcher give the fitness of the ordinary process arena, to the bit;
+#  2. an external role that never answers ends the episode after --external-timeout, naming it;
+#  3. a module that reports another genome hash is refused, naming both hashes;
+#  4. bad --external options are usage errors;
+#  5. ahhs-worker --external: an evolution whose arenas have an external module equals one on
+#     the direct arena.
+bin=${1:?usage: external_roles_test.sh BIN_DIR}
+source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
+ahhs_netns "$0" "$@"
+url="udpm://239.255.42.51:7743?ttl=0&recv_buf_size=4194304"
+ahhs_scratch 'ahhs-[a-z]+|role_peer'
+fit() { tail -1 "$1" | sed -n 's/^fitness: //p'; }
+"$bin/ahhs-genome" random --variant ahhs2 --hormones 5 --rules 30 --sensors 4 --actuators 1 --seed 3 >$tmp/g.json
+launch=("$bin/ahhs-launch" --scenario gait --modules 3 --genome $tmp/g.json --seed 5 --duration 4 --lcm-url "$url")
+
+echo "== 1. external roles give the process arena's fitness"
+"${launch[@]}" --arena REF >$tmp/ref.out 2>&1 || { cat $tmp/ref.out; fail "reference episode"; }
+ref=$(fit $tmp/ref.out)
+[[ -n "$ref" ]] || fail "no reference fitness"
+run_with() {  # NAME EXTERNAL COMMAND...: starts the commands, then the launcher
+  local name=$1 external=$2
+  shift 2
+  local pids=()
+  while [[ $# -gt 0 ]]; do
+    local cmd=()
+    while [[ $# -gt 0 && $1 != ";" ]]; do cmd+=("$1"); shift; done
+    [[ $# -gt 0 ]] && shift
+    "${cmd[@]}" >>$tmp/$name.roles 2>&1 &
+    pids+=($!)
+  done
+  "${launch[@]}" --arena $name --external "$external" --external-timeout 20 >$tmp/$name.out 2>&1 ||
+    { cat $tmp/$name.out $tmp/$name.roles; fail "episode with external $external"; }
+  kill "${pids[@]}" 2>/dev/null
+  wait "${pids[@]}" 2>/dev/null
+  grep -q "waiting up to 20 s for" $tmp/$name.out || fail "no waiting line: $(cat $tmp/$name.out)"
+  [[ "$(fit $tmp/$name.out)" == "$ref" ]] || fail "external $external: $(fit $tmp/$name.out), not $ref"
+  echo "external $external: fitness $ref"
+}
+module() { echo "$bin/ahhs-module" --id $1 --lcm-url "$url" --arena $2 --hormone-timeout-ms 500; }
+run_with EXTM module:1 $(module 1 EXTM)
+run_with EXTS sim,fitness "$bin/ahhs-sim" --lcm-url "$url" --arena EXTS \; "$bin/ahhs-fitness" --lcm-url "$url" --arena EXTS
+run_with EXTO modules $(module 0 EXTO) \; $(module 1 EXTO) \; $(module 2 EXTO)
+
+echo "== 2. an external role that never answers"
+start=$SECONDS
+if "${launch[@]}" --arena NONE --external module:2 --external-timeout 2 >$tmp/none.out 2>&1; then fail "an absent external module was not noticed"; fi
+grep -q "no answer to the episode handshake from module 2 (external) within 2 s on arena NONE" $tmp/none.out ||
+  fail "absent module message: $(cat $tmp/none.out)"
+(( SECONDS - start < 15 )) || fail "took $((SECONDS - start)) s to give up"
+echo "$(grep 'episode failed' $tmp/none.out)"
+
+echo "== 3. a module that runs another genome"
+"$bin/role_peer" --role wrong-hash-module --lcm-url "$url" --arena WRONG --id 1 --seconds 20 >/dev/null 2>&1 &
+peer=$!
+if "${launch[@]}" --arena WRONG --external module:1 --external-timeout 10 >$tmp/wrong.out 2>&1; then fail "a wrong genome hash was accepted"; fi
+kill $peer 2>/dev/null
+grep -q "module 1 reports genome hash [0-9a-f]\{16\}, not the episode's [0-9a-f]\{16\}" $tmp/wrong.out ||
+  fail "wrong hash message: $(cat $tmp/wrong.out)"
+echo "$(grep 'episode failed' $tmp/wrong.out)"
+
+echo "== 4. bad options"
+expect_usage() {  # MESSAGE ARGS...
+  local message=$1
+  shift
+  local code=0
+  "$@" >$tmp/bad.out 2>&1 || code=$?
+  [[ $code -ne 0 ]] || fail "accepted: $*"
+  grep -q -- "$message" $tmp/bad.out || fail "'$*': $(cat $tmp/bad.out)"
+}
+expect_usage "needs --arena NAME" "${launch[@]}" --external module:1
+expect_usage "modules are 0 to 2" "${launch[@]}" --arena X --external module:3
+expect_usage "unknown role 'motor'" "${launch[@]}" --arena X --external motor
+expect_usage "not --fused" "$bin/ahhs-launch" --genome $tmp/g.json --fused --arena X --external sim
+expect_usage "needs --arena-kind processes" "$bin/ahhs-worker" --any-run --external module:1
+expect_usage "needs --arena-name NAME and --arena-url URL" "$bin/ahhs-worker" --any-run --arena-kind processes --external module:1
+expect_usage "--slots must be 1" "$bin/ahhs-worker" --any-run --arena-kind processes --arena-name A --arena-url "$url" --slots 2 --external module:1
+echo "usage errors name the problem"
+
+echo "== 5. ahhs-worker --external: evolution with an external module"
+evolve=("$bin/ahhs-evolve" --scenario gait --modules 3 --variant ahhs2 --hormones 5 --rules 10 --population 4 --generations 2 --duration 2 --seed 9)
+"${evolve[@]}" --out $tmp/direct --workers 1 --lcm-url "${url/7743/7744}" >$tmp/direct.out 2>&1 || { cat $tmp/direct.out; fail "direct evolution"; }
+$(module 1 EVO) >$tmp/evo-module.out 2>&1 &
+"$bin/ahhs-worker" --any-run --lcm-url "${url/7743/7745}" --arena-kind processes --arena-name EVO --arena-url "$url" \
+  --external module:1 --external-timeout 20 >$tmp/worker.out 2>&1 &
+"${evolve[@]}" --out $tmp/external --workers 0 --worker-wait 20 --lcm-url "${url/7743/7745}" >$tmp/external.out 2>&1 ||
+  { cat $tmp/external.out $tmp/worker.out; fail "evolution with an external module"; }
+dump() {
+  sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, printf('%!.17g', fitness) FROM individuals ORDER BY generation, idx"
+}
+dump $tmp/direct >$tmp/direct.dump
+[[ -s $tmp/direct.dump ]] || fail "empty run"
+dump $tmp/external | cmp -s $tmp/direct.dump - || fail "the run with an external module differs from the direct one"
+grep -q "external: module:1" $tmp/worker.out || fail "worker line: $(cat $tmp/worker.out)"
+echo "identical ($(wc -l <$tmp/direct.dump) individuals)"
+echo "PASS"

@@ -93,6 +93,10 @@ int main(int argc, char** argv) {
                  "seconds an episode waits for the external roles to answer")
       ->check(CLI::Range(1, 86400))
       ->capture_default_str();
+  bool realtime = false;
+  auto* realtime_option =
+      app.add_flag("--realtime", realtime,
+                   "episodes at wall-clock pace, for a physical organism (--arena-kind processes)");
   app.add_option("--id", id, "worker id, unique on the bus (default: host:pid)")->check(wire_text);
   app.add_flag("-v,--verbose", verbose, "print a line per evaluation");
   app.add_flag("-q,--quiet", quiet, "print errors only");
@@ -101,6 +105,10 @@ int main(int argc, char** argv) {
   if (run.empty() && !any_run) {
     std::cerr << "ahhs-worker: say which run to serve: --run RUN_ID (ahhs-evolve prints it) or "
                  "--any-run\n";
+    return ahhs::cli::kExitUsage;
+  }
+  if (realtime_option->count() > 0 && arena != "processes") {
+    std::cerr << "ahhs-worker: --realtime needs --arena-kind processes\n";
     return ahhs::cli::kExitUsage;
   }
   if (external_option->count() > 0) {
@@ -150,6 +158,7 @@ int main(int argc, char** argv) {
         args.insert(args.end(), {"--run", run});
       if (verbose) args.push_back("--verbose");
       if (quiet) args.push_back("--quiet");
+      if (realtime) args.push_back("--realtime");
       children.Start("slot " + std::to_string(k), args, false);
     }
     if (!quiet) std::cerr << "ahhs-worker: " << slots << " worker processes on " << host << '\n';
@@ -176,6 +185,7 @@ int main(int argc, char** argv) {
     arena_options.name = arena_name.empty() ? "W" + std::to_string(getpid()) : arena_name;
     arena_options.external = external;
     arena_options.external_timeout = std::chrono::seconds(external_timeout_s);
+    arena_options.realtime = realtime;
     ev::ArenaEvaluator evaluator(arena_options);
     auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
     ev::WorkerNode node(bus.get(), id, host, [&](const ev::FarmJob& job) {

@@ -41,14 +41,18 @@ class FusedArena : public Arena {
 
 class ProcessesArena : public Arena {
  public:
-  explicit ProcessesArena(ProcessArenaOptions options) : processes_(std::move(options)) {}
+  ProcessesArena(ProcessArenaOptions options, bool realtime)
+      : processes_(std::move(options)), realtime_(realtime) {}
   EpisodeResult Run(const EpisodeSpec& spec) override {
-    return processes_.Run(spec, [](std::string*) { return true; });
+    EpisodeSpec s = spec;
+    s.realtime = s.realtime || realtime_;
+    return processes_.Run(s, [](std::string*) { return true; });
   }
   bool healthy() const override { return processes_.healthy(); }
 
  private:
   ProcessArena processes_;
+  bool realtime_;
 };
 
 }  // namespace
@@ -56,12 +60,12 @@ class ProcessesArena : public Arena {
 std::unique_ptr<Arena> MakeArena(const ArenaOptions& options, const sim::ScenarioConfig& config) {
   switch (options.kind) {
     case ArenaKind::kDirect:
-      if (!options.external.empty())
-        throw std::invalid_argument("external roles need the process arena");
+      if (!options.external.empty() || options.realtime)
+        throw std::invalid_argument("external roles and real time need the process arena");
       return std::make_unique<DirectArena>();
     case ArenaKind::kFused:
-      if (!options.external.empty())
-        throw std::invalid_argument("external roles need the process arena");
+      if (!options.external.empty() || options.realtime)
+        throw std::invalid_argument("external roles and real time need the process arena");
       return std::make_unique<FusedArena>();
     case ArenaKind::kProcesses: {
       ProcessArenaOptions o;
@@ -71,7 +75,7 @@ std::unique_ptr<Arena> MakeArena(const ArenaOptions& options, const sim::Scenari
       if (!options.external.empty())
         o.external = ParseExternalRoles(options.external, o.num_modules);
       o.external_timeout = options.external_timeout;
-      return std::make_unique<ProcessesArena>(o);
+      return std::make_unique<ProcessesArena>(o, options.realtime);
     }
   }
   throw std::invalid_argument("unknown arena kind");

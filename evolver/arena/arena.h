@@ -36,6 +36,8 @@ struct ArenaOptions {
   // how long an episode waits for them.
   std::string external;
   std::chrono::seconds external_timeout{60};
+  // Episodes at wall-clock pace (a physical organism): the process arena only.
+  bool realtime = false;
 };
 
 // An arena for episodes of `config`'s shape (the process arena starts one module per

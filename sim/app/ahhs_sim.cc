@@ -1,6 +1,10 @@
 // ahhs-sim: the ODE arena.
 //   bus mode (default): serves episodes commanded on <ARENA>/SIM/CONTROL (docs/protocol.md);
+//   --physics none: the episode server of a physical organism (clock and topology only);
 //   standalone mode (--drive): one episode with built-in commands, "fitness: <value>" last.
+#include <poll.h>
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <chrono>
@@ -15,6 +19,7 @@
 #include "sim/core/behaviour.h"
 #include "sim/core/drive.h"
 #include "sim/core/scenario.h"
+#include "sim/node/episode_server.h"
 #include "sim/node/sim_node.h"
 
 namespace as = ahhs::sim;
@@ -55,6 +60,42 @@ int ServeBus(const std::string& url, const as::SimNodeOptions& options, int epis
         static_cast<unsigned long long>(s.dropped_messages), s.last_error.empty() ? "" : "; ",
         s.last_error.c_str());
     if (episodes > 0 && ++ended >= episodes) break;
+  }
+  return 0;
+}
+
+// The episode server of a physical organism: stdin lines confirm that the organism is back.
+int ServeEpisodes(const std::string& url, const as::EpisodeServerOptions& options, int episodes) {
+  auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
+  auto say = [](const std::string& line) { std::fprintf(stderr, "ahhs-sim: %s\n", line.c_str()); };
+  as::EpisodeServer server(bus.get(), options, say);
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  std::fprintf(stderr, "ahhs-sim: episode server (no physics) for arena '%s' on %s%s\n",
+               options.arena.c_str(), url.c_str(),
+               options.confirm ? "; confirm each episode with Enter or SIM/CONTROL CONFIRM" : "");
+  bool stdin_open = options.confirm;
+  int ended = 0;
+  auto last_phase = server.phase();
+  while (!g_stop) {
+    server.Poll(std::chrono::milliseconds(20));
+    if (stdin_open) {
+      pollfd in{0, POLLIN, 0};
+      if (poll(&in, 1, 0) > 0) {
+        char buffer[256];
+        const ssize_t n = read(0, buffer, sizeof buffer);
+        if (n <= 0) {
+          stdin_open = false;  // end of input: confirmations come as SIM/CONTROL CONFIRM only
+        } else {
+          for (ssize_t k = 0; k < n; ++k)
+            if (buffer[k] == '\n') server.Confirm();
+        }
+      }
+    }
+    const auto phase = server.phase();
+    if (phase == last_phase) continue;
+    last_phase = phase;
+    if (phase == as::EpisodeServer::Phase::kFinished && episodes > 0 && ++ended >= episodes) break;
   }
   return 0;
 }
@@ -107,8 +148,39 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--duration", duration, "episode length, simulated seconds (default: the task's)");
   app.add_flag("-v,--verbose", verbose, "print the state once per simulated second");
+  std::string physics = "ode";
+  as::EpisodeServerOptions server_options;
+  int confirm_timeout_s = 600;
+  bool no_confirm = false;
+  app.add_option("--physics", physics,
+                 "bus mode: ode (simulate the organism) or none (episode server of a physical "
+                 "organism: clock and topology only, docs/hardware.md)")
+      ->check(CLI::IsMember({"ode", "none"}))
+      ->capture_default_str();
+  app.add_flag("--no-confirm", no_confirm,
+               "--physics none: start each episode without waiting for the operator");
+  app.add_option("--confirm-timeout", confirm_timeout_s,
+                 "--physics none: seconds to wait for the operator's confirmation before giving "
+                 "an episode up")
+      ->check(CLI::Range(1, 86400))
+      ->capture_default_str();
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
+  if (physics == "none") {
+    if (drive_opt->count() > 0) {
+      std::cerr << "ahhs-sim: --drive needs the physics; --physics none serves the bus only\n";
+      return ahhs::cli::kExitUsage;
+    }
+    try {
+      server_options.arena = node_options.arena;
+      server_options.confirm = !no_confirm;
+      server_options.confirm_timeout = std::chrono::seconds(confirm_timeout_s);
+      return ServeEpisodes(url, server_options, episodes);
+    } catch (const std::exception& e) {
+      std::cerr << "ahhs-sim: " << e.what() << '\n';
+      return 1;
+    }
+  }
   if (drive_opt->count() == 0) {
     try {
       node_options.lockstep_timeout = std::chrono::milliseconds(timeout_ms);

@@ -238,9 +238,7 @@ void GaitScenario::Build() {
 }
 
 std::vector<std::pair<int, int>> GaitScenario::Docking() const {
-  std::vector<std::pair<int, int>> links;
-  for (int i = 0; i + 1 < num_modules_; ++i) links.emplace_back(i, i + 1);
-  return links;
+  return ChainDocking(num_modules_);
 }
 
 void GaitScenario::SetActuators(int compartment, const double* values) {

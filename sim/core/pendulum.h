@@ -48,7 +48,7 @@ class PendulumScenario final : public Scenario {
   bool actuator_owned(int compartment, int actuator) const override {
     return actuator == compartment;
   }
-  std::vector<std::pair<int, int>> Docking() const override { return {{0, 1}}; }
+  std::vector<std::pair<int, int>> Docking() const override { return ChainDocking(2); }
   void SetActuators(int compartment, const double* values) override;
   using Scenario::Step;
   StepStatus Step(const SubstepObserver& observer) override;

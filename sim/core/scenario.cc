@@ -89,4 +89,10 @@ std::unique_ptr<Scenario> MakeScenario(const ScenarioConfig& config) {
   return std::make_unique<GaitScenario>(config, k);
 }
 
+std::vector<std::pair<int, int>> ChainDocking(int compartments) {
+  std::vector<std::pair<int, int>> links;
+  for (int i = 0; i + 1 < compartments; ++i) links.emplace_back(i, i + 1);
+  return links;
+}
+
 }  // namespace ahhs::sim

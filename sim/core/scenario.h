@@ -54,6 +54,9 @@ struct ScenarioShape {
 };
 ScenarioShape ShapeOf(const ScenarioConfig& config);
 
+// The docking of both tasks' organisms: a chain, compartment i's back to i + 1's front.
+std::vector<std::pair<int, int>> ChainDocking(int compartments);
+
 // Ticks of an episode of `duration` simulated seconds (0: `default_ticks`).
 std::int64_t EpisodeTicks(double duration, double control_period, std::int64_t default_ticks);
 

@@ -79,12 +79,17 @@ sim_state_t StateMessage(const std::vector<BodyState>& bodies, std::int64_t epis
 }
 
 topology_t TopologyMessage(const Scenario& scenario, std::int64_t episode) {
+  return TopologyMessage(scenario.num_compartments(), scenario.Docking(), episode, scenario.tick());
+}
+
+topology_t TopologyMessage(int compartments, const std::vector<std::pair<int, int>>& docking,
+                           std::int64_t episode, std::int64_t tick) {
   topology_t m{};
   m.episode = episode;
-  m.tick = scenario.tick();
-  m.num_modules = scenario.num_compartments();
+  m.tick = tick;
+  m.num_modules = compartments;
   m.ports_per_module = 4;
-  for (const auto& [a, b] : scenario.Docking()) {
+  for (const auto& [a, b] : docking) {
     m.module_a.push_back(a);
     m.port_a.push_back(2);  // back port of the module in front
     m.module_b.push_back(b);

@@ -23,6 +23,9 @@ void FillSensorsMessage(const Scenario& scenario, int module, std::int64_t episo
 void FillStateMessage(const std::vector<BodyState>& bodies, std::int64_t episode, std::int64_t tick,
                       double sim_time, sim_state_t* m);
 topology_t TopologyMessage(const Scenario& scenario, std::int64_t episode);
+// The same from an organism's shape alone (the episode server has no Scenario).
+topology_t TopologyMessage(int compartments, const std::vector<std::pair<int, int>>& docking,
+                           std::int64_t episode, std::int64_t tick);
 
 // SIM/STATE carries the bodies that move (mass > 0), SIM/SCENE the static ones (mass 0: walls,
 // cubes), so the state stream does not repeat what never changes. Keeps, in order, the bodies

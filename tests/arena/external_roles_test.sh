@@ -7,7 +7,11 @@
 #  3. a module that reports another genome hash is refused, naming both hashes;
 #  4. bad --external options are usage errors;
 #  5. ahhs-worker --external: an evolution whose arenas have an external module equals one on
-#     the direct arena.
+#     the direct arena;
+#  6. a physical organism, emulated: ahhs-sim --physics none as the episode server, a firmware
+#     process per module, a tracker; the episode waits for the operator (Enter, or a button's
+#     SIM/CONTROL CONFIRM) and gives up without one;
+#  7. evolution on the emulated physical organism: ahhs-worker --realtime --external sim.
 bin=${1:?usage: external_roles_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_netns "$0" "$@"
@@ -96,4 +100,53 @@ dump $tmp/direct >$tmp/direct.dump
 dump $tmp/external | cmp -s $tmp/direct.dump - || fail "the run with an external module differs from the direct one"
 grep -q "external: module:1" $tmp/worker.out || fail "worker line: $(cat $tmp/worker.out)"
 echo "identical ($(wc -l <$tmp/direct.dump) individuals)"
+echo "== 6. a physical organism: episode server, firmware, tracker"
+physical() {  # NAME: firmware for modules 0-2 and a tracker on arena NAME, for 8 s
+  peers=()
+  for m in 0 1 2; do
+    "$bin/role_peer" --role firmware --arena $1 --id $m --lcm-url "$url" --seconds 8 >>$tmp/$1.roles 2>&1 &
+    peers+=($!)
+  done
+  "$bin/role_peer" --role tracker --arena $1 --modules 3 --lcm-url "$url" --seconds 8 >>$tmp/$1.roles 2>&1 &
+  peers+=($!)
+}
+rt=("$bin/ahhs-launch" --scenario gait --modules 3 --genome $tmp/g.json --seed 5 --duration 2 --realtime --lcm-url "$url" --external sim)
+physical PHYS
+(sleep 1; echo; sleep 5) | "$bin/ahhs-sim" --physics none --arena PHYS --lcm-url "$url" --episodes 1 >$tmp/server.out 2>&1 &
+"${rt[@]}" --external-timeout 10 --arena PHYS >$tmp/phys.out 2>&1 || { cat $tmp/phys.out $tmp/server.out; fail "physical organism episode"; }
+wait "${peers[@]}"
+f=$(fit $tmp/phys.out)
+# The tracker moves every body 1 cm per tick: 39 to 40 ticks of 1 cm, over 1 m / 0.7.
+awk -v f="$f" 'BEGIN { exit !(f > 0.26 && f < 0.29) }' || fail "physical organism fitness $f (0.273-0.28 expected)"
+grep -q "put the organism at its start" $tmp/server.out || fail "server did not ask the operator: $(cat $tmp/server.out)"
+grep -q "finished after 40 ticks" $tmp/server.out || fail "server: $(cat $tmp/server.out)"
+[[ $(grep -c 'received 40 hinge commands' $tmp/PHYS.roles) == 3 ]] || fail "firmware: $(cat $tmp/PHYS.roles)"
+echo "fitness $f from the tracker; each firmware got the 40 hinge commands of its module"
+physical BUTTON
+"$bin/ahhs-sim" --physics none --arena BUTTON --lcm-url "$url" --episodes 1 </dev/null >$tmp/button-server.out 2>&1 &
+"$bin/role_peer" --role button --arena BUTTON --lcm-url "$url" --seconds 2 >/dev/null 2>&1 &
+"${rt[@]}" --external-timeout 10 --arena BUTTON >$tmp/button.out 2>&1 || { cat $tmp/button.out $tmp/button-server.out; fail "episode confirmed by a button"; }
+echo "confirmed by SIM/CONTROL CONFIRM: fitness $(fit $tmp/button.out)"
+"$bin/ahhs-sim" --physics none --arena NOONE --lcm-url "$url" --confirm-timeout 1 </dev/null >$tmp/noone-server.out 2>&1 &
+server=$!
+if "${rt[@]}" --arena NOONE --external-timeout 4 >$tmp/noone.out 2>&1; then fail "an episode started without the operator"; fi
+kill $server
+wait $server
+grep -q "no confirmation within 1 s; given up" $tmp/noone-server.out || fail "server without operator: $(cat $tmp/noone-server.out)"
+grep -q "no answer to the episode handshake from the sim (external)" $tmp/noone.out || fail "launcher without operator: $(cat $tmp/noone.out)"
+echo "without the operator: $(grep 'given up' $tmp/noone-server.out)"
+echo "== 7. evolution on a physical organism, episode after episode"
+for m in 0 1 2; do "$bin/role_peer" --role firmware --arena ROBOT --id $m --lcm-url "$url" --seconds 60 >/dev/null 2>&1 & done
+"$bin/role_peer" --role tracker --arena ROBOT --modules 3 --lcm-url "$url" --seconds 60 >/dev/null 2>&1 &
+"$bin/ahhs-sim" --physics none --no-confirm --arena ROBOT --lcm-url "$url" >$tmp/robot-server.out 2>&1 &
+"$bin/ahhs-worker" --any-run --lcm-url "${url/7743/7746}" --arena-kind processes --arena-name ROBOT --arena-url "$url" \
+  --external sim --realtime >$tmp/robot-worker.out 2>&1 &
+"$bin/ahhs-evolve" --scenario gait --modules 3 --variant ahhs2 --hormones 5 --rules 10 --population 3 --generations 1 \
+  --duration 1 --seed 9 --out $tmp/robot --workers 0 --worker-wait 20 --lcm-url "${url/7743/7746}" >$tmp/robot.out 2>&1 ||
+  { cat $tmp/robot.out $tmp/robot-worker.out $tmp/robot-server.out; fail "evolution on the physical organism"; }
+episodes=$(grep -c "finished after 20 ticks" $tmp/robot-server.out)
+[[ $episodes -eq 3 ]] || fail "$episodes episodes on the organism, 3 expected: $(cat $tmp/robot-server.out)"
+fits=$(sqlite3 $tmp/robot/run.sqlite "SELECT group_concat(printf('%.3f', fitness), ' ') FROM individuals")
+echo "3 episodes in real time on the episode server; fitness from the tracker: $fits"
+for f in $fits; do awk -v f="$f" 'BEGIN { exit !(f > 0.1) }' || fail "fitness $f from the tracker"; done
 echo "PASS"

@@ -47,6 +47,8 @@ ProcessArena::ProcessArena(ProcessArenaOptions options) : options_(std::move(opt
                                       "--lockstep-timeout-ms",
                                       std::to_string(options_.lockstep_timeout_ms)};
     if (options_.verbose) sim_args.push_back("--verbose");
+    if (!options_.hardware_modules.empty())
+      sim_args.insert(sim_args.end(), {"--hardware-modules", options_.hardware_modules});
     // A logger is a passive listener: pace the lockstep so that it keeps up on a busy machine
     // (lcm-logger queues only 30 messages; ahhs-logger's queue is unbounded, but the socket's
     // receive buffer is not).

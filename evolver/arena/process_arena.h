@@ -34,6 +34,8 @@ struct ProcessArenaOptions {
   // Roles not started here: every episode waits up to `external_timeout` for them.
   ExternalRoles external;
   std::chrono::seconds external_timeout{60};
+  // ahhs-sim --hardware-modules: modules whose bodies are hardware ("" = none).
+  std::string hardware_modules;
 };
 
 class ProcessArena {

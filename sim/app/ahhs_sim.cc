@@ -51,13 +51,14 @@ int ServeBus(const std::string& url, const as::SimNodeOptions& options, int epis
     std::fprintf(
         stderr,
         "ahhs-sim: episode %lld %s after %lld ticks, fitness %.17g; missed %llu, late %llu, "
-        "dropped %llu%s%s\n",
+        "dropped %llu, hardware readings followed %llu%s%s\n",
         static_cast<long long>(node.episode()), as::PhaseName(phase),
         static_cast<long long>(node.scenario()->tick()),
         phase == as::SimNode::Phase::kFinished ? node.scenario()->Fitness() : 0.0,
         static_cast<unsigned long long>(s.missed_commands),
         static_cast<unsigned long long>(s.late_commands),
-        static_cast<unsigned long long>(s.dropped_messages), s.last_error.empty() ? "" : "; ",
+        static_cast<unsigned long long>(s.dropped_messages),
+        static_cast<unsigned long long>(s.twin_readings), s.last_error.empty() ? "" : "; ",
         s.last_error.c_str());
     if (episodes > 0 && ++ended >= episodes) break;
   }
@@ -148,6 +149,13 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--duration", duration, "episode length, simulated seconds (default: the task's)");
   app.add_flag("-v,--verbose", verbose, "print the state once per simulated second");
+  std::vector<int> hardware_modules;
+  app.add_option("--hardware-modules", hardware_modules,
+                 "bus mode, real time, gait: these modules' bodies are hardware; their firmware "
+                 "publishes their SENSORS and their simulated bodies follow the hinge_angle it "
+                 "reports (docs/hardware.md)")
+      ->delimiter(',')
+      ->check(CLI::Range(0, 32767));
   std::string physics = "ode";
   as::EpisodeServerOptions server_options;
   int confirm_timeout_s = 600;
@@ -167,8 +175,9 @@ int main(int argc, char** argv) {
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   if (physics == "none") {
-    if (drive_opt->count() > 0) {
-      std::cerr << "ahhs-sim: --drive needs the physics; --physics none serves the bus only\n";
+    if (drive_opt->count() > 0 || !hardware_modules.empty()) {
+      std::cerr << "ahhs-sim: --drive and --hardware-modules need the physics; --physics none "
+                   "serves the bus only\n";
       return ahhs::cli::kExitUsage;
     }
     try {
@@ -181,6 +190,7 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
+  node_options.hardware_modules.insert(hardware_modules.begin(), hardware_modules.end());
   if (drive_opt->count() == 0) {
     try {
       node_options.lockstep_timeout = std::chrono::milliseconds(timeout_ms);

@@ -1,6 +1,7 @@
 #include "sim/core/gait.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -250,6 +251,13 @@ void GaitScenario::SetActuators(int compartment, const double* values) {
   // A new target wakes a resting organism (ODE then wakes every body connected to this one).
   dBodyEnable(m.front.body);
   dBodyEnable(m.back.body);
+}
+
+bool GaitScenario::FollowHinge(int compartment, double angle) {
+  if (!std::isfinite(angle)) return true;
+  const double range = k_.hinge_range;
+  SetActuators(compartment, std::array<double, 1>{std::clamp(angle, -range, range) / range}.data());
+  return true;
 }
 
 void GaitScenario::NearCallback(void* data, dGeomID a, dGeomID b) {

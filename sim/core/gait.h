@@ -39,6 +39,7 @@ class GaitScenario final : public Scenario {
   StepStatus Step(const SubstepObserver& observer) override;
   void ReadSensors(int compartment, double* values) const override;
   double HingeAngle(int compartment) const override;
+  bool FollowHinge(int compartment, double angle) override;
   void Bodies(std::vector<BodyState>* bodies) const override;
   double Fitness() const override;
   double Cost() const override;

@@ -107,6 +107,9 @@ class Scenario {
   virtual void ReadSensors(int compartment, double* values) const = 0;
   // Measured main-hinge angle of a compartment, radians (0 where there is none).
   virtual double HingeAngle(int compartment) const = 0;
+  // A digital twin: the compartment's hinge servos to `angle` (radians, the angle its physical
+  // counterpart reports) instead of following actuator values. False where there is no hinge.
+  virtual bool FollowHinge(int /*compartment*/, double /*angle*/) { return false; }
   virtual void Bodies(std::vector<BodyState>* bodies) const = 0;
 
   virtual double Fitness() const = 0;  // maximised; see docs/scenarios.md

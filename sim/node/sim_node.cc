@@ -106,7 +106,18 @@ void SimNode::Reset(const sim_control_t& m) {
     return;
   }
   ScenarioConfig config;
-  const std::string error = ConfigFromReset(m, &config);
+  std::string error = ConfigFromReset(m, &config);
+  if (error.empty() && !options_.hardware_modules.empty()) {
+    const int modules = ShapeOf(config).compartments;
+    if (config.kind != ScenarioKind::kGait)
+      error = "hardware modules: only the gait's modules have bodies to hand over";
+    else if (m.clock_mode != sim_control_t::MODE_REALTIME)
+      error = "hardware modules need real time (ahhs-launch --realtime)";
+    else if (*options_.hardware_modules.rbegin() >= modules ||
+             *options_.hardware_modules.begin() < 0)
+      error = "hardware module " + std::to_string(*options_.hardware_modules.rbegin()) +
+              " is not one of the " + std::to_string(modules) + " modules";
+  }
   if (!error.empty()) {
     ++stats_.refused_resets;
     stats_.last_error = "reset refused: " + error;
@@ -124,6 +135,13 @@ void SimNode::Reset(const sim_control_t& m) {
   steps_left_ = -1;
   const int n = scenario_->num_compartments();
   SyncHingeSubscriptions(n);  // before TOPOLOGY and CLOCK go out: no module commands earlier
+  twin_angle_.clear();
+  for (int h : options_.hardware_modules)
+    if (!hardware_subscriptions_.count(h))
+      hardware_subscriptions_[h] = bus::SubscribeTyped<module_sensors_t>(
+          *bus_, channels_.Sensors(h),
+          [this, h](const std::string&, const module_sensors_t& s) { OnHardwareSensors(h, s); },
+          &hinge_counters_);
   commands_.assign(static_cast<std::size_t>(n),
                    std::vector<double>(static_cast<std::size_t>(scenario_->num_actuators()), 0.0));
   command_tick_.assign(static_cast<std::size_t>(n), -1);
@@ -188,6 +206,15 @@ void SimNode::OnHinge(const std::string& channel, const hinge_command_t& m) {
   command_tick_[i] = m.tick;
 }
 
+void SimNode::OnHardwareSensors(int module, const module_sensors_t& m) {
+  if (!scenario_ || m.episode != episode_ || m.module != module || !std::isfinite(m.hinge_angle)) {
+    ++stats_.dropped_messages;
+    return;
+  }
+  twin_angle_[module] = m.hinge_angle;
+  ++stats_.twin_readings;
+}
+
 bool SimNode::ReadyToAdvance(Clock::time_point now) const {
   if (phase_ != Phase::kRunning) return false;
   if (realtime_) return now >= tick_deadline_;
@@ -216,6 +243,11 @@ void SimNode::Advance() {
   const int n = scenario_->num_compartments();
   for (int c = 0; c < n; ++c) {
     const auto i = static_cast<std::size_t>(c);
+    if (options_.hardware_modules.count(c)) {  // the body follows its hardware, not commands
+      const auto twin = twin_angle_.find(c);
+      if (twin != twin_angle_.end()) scenario_->FollowHinge(c, twin->second);
+      continue;
+    }
     if (!realtime_ && command_tick_[i] != scenario_->tick())
       ++stats_.missed_commands;  // keeps the last one
     if (command_tick_[i] >= 0) {
@@ -256,6 +288,7 @@ void SimNode::PublishTickStart() {
     tick_deadline_ = now + options_.lockstep_timeout;
   }
   for (int c = 0; c < scenario_->num_compartments(); ++c) {
+    if (options_.hardware_modules.count(c)) continue;  // its firmware publishes its readings
     FillSensorsMessage(*scenario_, c, episode_, &sensors_msg_);
     sensors_msg_.utime = bus::NowUtime();
     bus::PublishTyped(*bus_, sensors_channels_[static_cast<std::size_t>(c)], sensors_msg_);

@@ -4,10 +4,13 @@
 #pragma once
 
 #include <ahhs/hinge_command_t.hpp>
+#include <ahhs/module_sensors_t.hpp>
 #include <ahhs/sim_control_t.hpp>
 #include <chrono>
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -29,6 +32,11 @@ struct SimNodeOptions {
   // Lockstep: at least this much wall time per tick (0 = as fast as the modules answer). Gives a
   // passive listener such as lcm-logger time to keep up; results do not depend on it.
   std::chrono::microseconds min_tick_period{0};
+  // Modules whose bodies are hardware (ahhs-sim --hardware-modules, docs/hardware.md): the sim
+  // publishes no SENSORS for them, and their simulated bodies follow the hinge_angle their
+  // firmware reports on SENSORS (a digital twin), so that the other modules still feel them.
+  // Real time and the gait only.
+  std::set<int> hardware_modules;
 };
 
 struct SimNodeStats {
@@ -39,7 +47,8 @@ struct SimNodeStats {
   std::uint64_t late_commands = 0;     // lockstep: HINGE for a tick already stepped
   std::uint64_t dropped_messages = 0;  // undecodable, foreign episode, invalid values
   std::uint64_t refused_resets = 0;
-  std::string last_error;  // why the last reset was refused or the episode failed
+  std::uint64_t twin_readings = 0;  // hardware modules' SENSORS whose hinge_angle was followed
+  std::string last_error;           // why the last reset was refused or the episode failed
 };
 
 class SimNode {
@@ -72,6 +81,7 @@ class SimNode {
   using Clock = std::chrono::steady_clock;
   void OnControl(const sim_control_t& msg);
   void OnHinge(const std::string& channel, const hinge_command_t& msg);
+  void OnHardwareSensors(int module, const module_sensors_t& msg);
   // Listens to the HINGE channel of modules 0..n-1 exactly (no regex), so that over udpm:// the
   // bus's socket filter keeps the other modules' traffic out of this process.
   void SyncHingeSubscriptions(int n);
@@ -92,6 +102,8 @@ class SimNode {
   bus::DecodeCounters control_counters_, hinge_counters_;
   bus::Subscription control_subscription_;
   std::vector<bus::Subscription> hinge_subscriptions_;  // one per module
+  std::map<int, bus::Subscription> hardware_subscriptions_;
+  std::map<int, double> twin_angle_;  // latest hinge_angle reported by each hardware module
   // Channel names used every tick, built once (a name built per message costs an allocation).
   std::vector<std::string> sensors_channels_, hinge_channels_;
   std::string clock_channel_, state_channel_, scene_channel_;

@@ -11,7 +11,9 @@
 #  6. a physical organism, emulated: ahhs-sim --physics none as the episode server, a firmware
 #     process per module, a tracker; the episode waits for the operator (Enter, or a button's
 #     SIM/CONTROL CONFIRM) and gives up without one;
-#  7. evolution on the emulated physical organism: ahhs-worker --realtime --external sim.
+#  7. evolution on the emulated physical organism: ahhs-worker --realtime --external sim;
+#  8. a mixed organism: ahhs-launch --hardware-modules 1 with module 1's firmware emulated: the
+#     sim publishes no readings for it and its body follows the firmware's hinge angle.
 bin=${1:?usage: external_roles_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_netns "$0" "$@"
@@ -149,4 +151,17 @@ episodes=$(grep -c "finished after 20 ticks" $tmp/robot-server.out)
 fits=$(sqlite3 $tmp/robot/run.sqlite "SELECT group_concat(printf('%.3f', fitness), ' ') FROM individuals")
 echo "3 episodes in real time on the episode server; fitness from the tracker: $fits"
 for f in $fits; do awk -v f="$f" 'BEGIN { exit !(f > 0.1) }' || fail "fitness $f from the tracker"; done
+
+echo "== 8. a mixed organism: module 1's body is hardware"
+"$bin/role_peer" --role firmware --arena MIXED --id 1 --lcm-url "$url" --seconds 8 >$tmp/mixed-firmware.out 2>&1 &
+fw=$!
+"$bin/ahhs-launch" --scenario gait --modules 3 --genome $tmp/g.json --seed 5 --duration 3 --realtime \
+  --lcm-url "$url" --arena MIXED --hardware-modules 1 -v >$tmp/mixed.out 2>&1 || { cat $tmp/mixed.out; fail "mixed organism"; }
+wait $fw
+grep -q "received 60 hinge commands and 0 readings of others" $tmp/mixed-firmware.out ||
+  fail "firmware of module 1: $(cat $tmp/mixed-firmware.out)"
+followed=$(sed -n 's/.*hardware readings followed \([0-9]*\).*/\1/p' $tmp/mixed.out)
+(( ${followed:-0} >= 50 )) || fail "the sim followed ${followed:-no} hardware readings: $(grep ahhs-sim $tmp/mixed.out)"
+grep -q "ahhs-module 1: 60 ticks" $tmp/mixed.out || fail "module 1's controller: $(grep 'ahhs-module 1' $tmp/mixed.out)"
+echo "module 1: 60 readings from its firmware only, all 60 commands to it; the sim's twin followed $followed readings; fitness $(fit $tmp/mixed.out)"
 echo "PASS"

@@ -3,7 +3,8 @@
 //       a module that answers every GENOME with READY but reports another genome hash
 //   role_peer --role firmware --lcm-url URL --arena A --id N --seconds S
 //       a gait module's firmware: on every running SIM/CLOCK tick publishes SENSORS (4 proximity
-//       slots at 0, its hinge) with that episode and tick; counts the HINGE commands it gets
+//       slots at 0.5, its hinge at the last HINGE target: an ideal servo) with that episode and
+//       tick; counts the HINGE commands it gets and the readings of others on its channel
 //   role_peer --role tracker --lcm-url URL --arena A --modules N --seconds S
 //       a tracker: on every running or finished SIM/CLOCK tick publishes SIM/STATE with N module
 //       bodies 1 cm further along x per tick
@@ -18,6 +19,7 @@
 #include <ahhs/sim_control_t.hpp>
 #include <ahhs/sim_state_t.hpp>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <vector>
 
@@ -44,7 +46,8 @@ int main(int argc, char** argv) {
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
   bus::LcmBus bus(url);
   const bus::ArenaChannels ch(arena);
-  int answered = 0, commands = 0, published = 0;
+  int answered = 0, commands = 0, published = 0, foreign = 0;
+  double hinge = 0;
   std::vector<bus::Subscription> subs;
   if (role == "wrong-hash-module")
     subs.push_back(
@@ -61,7 +64,14 @@ int main(int argc, char** argv) {
         }));
   if (role == "firmware") {
     subs.push_back(bus::SubscribeTyped<hinge_command_t>(
-        bus, ch.Hinge(id), [&](const std::string&, const hinge_command_t&) { ++commands; }));
+        bus, ch.Hinge(id), [&](const std::string&, const hinge_command_t& h) {
+          ++commands;
+          if (std::isfinite(h.target_angle)) hinge = h.target_angle;
+        }));
+    subs.push_back(bus::SubscribeTyped<module_sensors_t>(
+        bus, ch.Sensors(id), [&](const std::string&, const module_sensors_t& m) {
+          if (m.values.empty() || m.values[0] != 0.5) ++foreign;  // not ours: the sim's
+        }));
     subs.push_back(bus::SubscribeTyped<sim_clock_t>(
         bus, ch.SimClock(), [&](const std::string&, const sim_clock_t& c) {
           if (c.run_state != sim_clock_t::RUNNING) return;
@@ -72,9 +82,9 @@ int main(int argc, char** argv) {
           m.module = id;
           m.sim_time = c.sim_time;
           m.num_sensors = 4;
-          m.values.assign(4, 0.0);
+          m.values.assign(4, 0.5);
           m.present.assign(4, true);
-          m.hinge_angle = 0;
+          m.hinge_angle = hinge;
           m.num_actuators = 1;
           m.actuator_present = {true};
           bus::PublishTyped(bus, ch.Sensors(id), m);
@@ -120,6 +130,7 @@ int main(int argc, char** argv) {
     ++published;
   }
   std::cout << role << ": answered " << answered << " genomes, published " << published
-            << " messages, received " << commands << " hinge commands\n";
+            << " messages, received " << commands << " hinge commands and " << foreign
+            << " readings of others\n";
   return 0;
 }

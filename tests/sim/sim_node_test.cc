@@ -310,3 +310,55 @@ TEST_CASE("real time: the latest command is used whatever tick it answered", "[s
   CHECK(states == 1 + 14 + 1);
   CHECK(clocks == 1 + 20 + 3);
 }
+
+TEST_CASE("a hardware module: no SENSORS from the sim, its body follows the reported hinge angle",
+          "[sim][node]") {
+  bus::LcmBus bus("memq://");
+  sim::SimNodeOptions options;
+  options.hardware_modules = {1};
+  sim::SimNode node(&bus, options);
+  std::set<int> sensors_from_sim;
+  auto sensors = bus::SubscribeTyped<module_sensors_t>(
+      bus, "AHHS/MODULE[0-9]+/SENSORS", [&](const std::string&, const module_sensors_t& m) {
+        if (m.num_sensors != 1) sensors_from_sim.insert(m.module);  // ours have 1 slot
+      });
+  auto reset = Control(sim_control_t::RESET, 12);
+  reset.scenario = "gait";
+  reset.num_modules = 3;
+  reset.duration = 1.0;                               // 20 ticks of 50 ms
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);  // lockstep: refused
+  node.Poll(1ms);
+  CHECK(node.phase() == sim::SimNode::Phase::kIdle);
+  CHECK_THAT(node.stats().last_error, Catch::Contains("need real time"));
+  reset.clock_mode = sim_control_t::MODE_REALTIME;
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);
+  node.Poll(1ms);
+  REQUIRE(node.phase() == sim::SimNode::Phase::kReady);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", Control(sim_control_t::START, 12));
+  module_sensors_t firmware{};
+  firmware.episode = 12;
+  firmware.module = 1;
+  firmware.num_sensors = 1;
+  firmware.values = {0.5};
+  firmware.present = {true};
+  firmware.hinge_angle = 0.6;  // radians: the real hinge stands there
+  firmware.num_actuators = 1;
+  firmware.actuator_present = {true};
+  while (node.phase() != sim::SimNode::Phase::kFinished) {
+    firmware.tick = node.scenario()->tick();
+    bus::PublishTyped(bus, "AHHS/MODULE1/SENSORS", firmware);
+    node.Poll(5ms);
+  }
+  bus.Handle(0us);
+  CHECK(sensors_from_sim == std::set<int>{0, 2});
+  CHECK(node.stats().twin_readings >= 15);
+  CHECK(node.scenario()->HingeAngle(1) == Approx(0.6).margin(0.05));
+  CHECK(std::abs(node.scenario()->HingeAngle(0)) < 0.05);  // no command: it stays straight
+
+  auto pendulum = Control(sim_control_t::RESET, 13);
+  pendulum.clock_mode = sim_control_t::MODE_REALTIME;
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", pendulum);
+  node.Poll(1ms);
+  CHECK(node.episode() == 12);
+  CHECK_THAT(node.stats().last_error, Catch::Contains("only the gait"));
+}

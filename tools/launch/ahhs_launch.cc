@@ -83,6 +83,10 @@ int main(int argc, char** argv) {
                  "seconds to wait for the external roles to answer the handshake")
       ->check(CLI::Range(1, 86400))
       ->capture_default_str();
+  std::string hardware_modules;
+  app.add_option("--hardware-modules", hardware_modules,
+                 "real time, gait: modules whose bodies are hardware (N[,M...]); the sim follows "
+                 "their firmware's hinge_angle and leaves their SENSORS to it (docs/hardware.md)");
   app.add_flag("-v,--verbose", verbose, "show the children's output");
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
@@ -120,6 +124,8 @@ int main(int argc, char** argv) {
           url + "'");
     if (!fused && ahhs::bus::IsInProcessUrl(url))
       throw std::invalid_argument("'" + url + "' stays inside one process: use it with --fused");
+    if (!hardware_modules.empty() && (fused || !realtime))
+      throw std::invalid_argument("--hardware-modules needs the process arena and --realtime");
     if (!external.empty()) {
       if (fused) throw std::invalid_argument("--external needs the process arena, not --fused");
       if (arena.empty())
@@ -156,6 +162,7 @@ int main(int argc, char** argv) {
       options.log_file = log_file;
       options.logger = logger;
       options.external = spec.external;
+      options.hardware_modules = hardware_modules;
       options.external_timeout = std::chrono::seconds(external_timeout_s);
       al::ProcessArena arena_processes(options);
       if (!spec.external.empty())

@@ -121,15 +121,15 @@ std::string CheckGenome(const Genome& g) {
 namespace {
 struct Fnv1a {
   std::uint64_t h = 0xcbf29ce484222325ULL;
-  void Bytes(const void* p, std::size_t n) {
-    const auto* b = static_cast<const unsigned char*>(p);
-    for (std::size_t k = 0; k < n; ++k) h = (h ^ b[k]) * 0x100000001b3ULL;
+  // 64 bits, least significant byte first whatever the host (docs/hardware.md, "Genome hash").
+  void Word(std::uint64_t v) {
+    for (int k = 0; k < 8; ++k) h = (h ^ ((v >> (8 * k)) & 0xff)) * 0x100000001b3ULL;
   }
-  void Int(std::int64_t v) { Bytes(&v, sizeof v); }
+  void Int(std::int64_t v) { Word(static_cast<std::uint64_t>(v)); }
   void Real(double v) {
     std::uint64_t bits;
     std::memcpy(&bits, &v, sizeof bits);
-    Bytes(&bits, sizeof bits);
+    Word(bits);
   }
 };
 }  // namespace

@@ -8,17 +8,17 @@
 #  4. bad --external options are usage errors;
 #  5. ahhs-worker --external: an evolution whose arenas have an external module equals one on
 #     the direct arena;
-#  6. a physical organism, emulated: ahhs-sim --physics none as the episode server, a firmware
-#     process per module, a tracker; the episode waits for the operator (Enter, or a button's
+#  6. a physical organism, emulated: ahhs-sim --physics none as the episode server, the C
+#     reference firmware (examples/) per module, the C tracker stub; the episode waits for the operator (Enter, or a button's
 #     SIM/CONTROL CONFIRM) and gives up without one;
 #  7. evolution on the emulated physical organism: ahhs-worker --realtime --external sim;
-#  8. a mixed organism: ahhs-launch --hardware-modules 1 with module 1's firmware emulated: the
+#  8. a mixed organism: ahhs-launch --hardware-modules 1 with the C firmware for module 1: the
 #     sim publishes no readings for it and its body follows the firmware's hinge angle.
 bin=${1:?usage: external_roles_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_netns "$0" "$@"
 url="udpm://239.255.42.51:7743?ttl=0&recv_buf_size=4194304"
-ahhs_scratch 'ahhs-[a-z]+|role_peer'
+ahhs_scratch 'ahhs-[a-z-]+|role_peer'
 fit() { tail -1 "$1" | sed -n 's/^fitness: //p'; }
 "$bin/ahhs-genome" random --variant ahhs2 --hormones 5 --rules 30 --sensors 4 --actuators 1 --seed 3 >$tmp/g.json
 launch=("$bin/ahhs-launch" --scenario gait --modules 3 --genome $tmp/g.json --seed 5 --duration 4 --lcm-url "$url")
@@ -106,10 +106,10 @@ echo "== 6. a physical organism: episode server, firmware, tracker"
 physical() {  # NAME: firmware for modules 0-2 and a tracker on arena NAME, for 8 s
   peers=()
   for m in 0 1 2; do
-    "$bin/role_peer" --role firmware --arena $1 --id $m --lcm-url "$url" --seconds 8 >>$tmp/$1.roles 2>&1 &
+    "$bin/ahhs-example-firmware" --arena $1 --id $m --lcm-url "$url" --seconds 8 >>$tmp/$1.roles 2>&1 &
     peers+=($!)
   done
-  "$bin/role_peer" --role tracker --arena $1 --modules 3 --lcm-url "$url" --seconds 8 >>$tmp/$1.roles 2>&1 &
+  "$bin/ahhs-example-tracker" --arena $1 --modules 3 --lcm-url "$url" --seconds 8 >>$tmp/$1.roles 2>&1 &
   peers+=($!)
 }
 rt=("$bin/ahhs-launch" --scenario gait --modules 3 --genome $tmp/g.json --seed 5 --duration 2 --realtime --lcm-url "$url" --external sim)
@@ -122,7 +122,8 @@ f=$(fit $tmp/phys.out)
 awk -v f="$f" 'BEGIN { exit !(f > 0.26 && f < 0.29) }' || fail "physical organism fitness $f (0.273-0.28 expected)"
 grep -q "put the organism at its start" $tmp/server.out || fail "server did not ask the operator: $(cat $tmp/server.out)"
 grep -q "finished after 40 ticks" $tmp/server.out || fail "server: $(cat $tmp/server.out)"
-[[ $(grep -c 'received 40 hinge commands' $tmp/PHYS.roles) == 3 ]] || fail "firmware: $(cat $tmp/PHYS.roles)"
+[[ $(grep -c '40 readings sent, 40 commands applied, 0 dropped, 0 readings of others' $tmp/PHYS.roles) == 3 ]] ||
+  fail "firmware: $(cat $tmp/PHYS.roles)"
 echo "fitness $f from the tracker; each firmware got the 40 hinge commands of its module"
 physical BUTTON
 "$bin/ahhs-sim" --physics none --arena BUTTON --lcm-url "$url" --episodes 1 </dev/null >$tmp/button-server.out 2>&1 &
@@ -138,8 +139,8 @@ grep -q "no confirmation within 1 s; given up" $tmp/noone-server.out || fail "se
 grep -q "no answer to the episode handshake from the sim (external)" $tmp/noone.out || fail "launcher without operator: $(cat $tmp/noone.out)"
 echo "without the operator: $(grep 'given up' $tmp/noone-server.out)"
 echo "== 7. evolution on a physical organism, episode after episode"
-for m in 0 1 2; do "$bin/role_peer" --role firmware --arena ROBOT --id $m --lcm-url "$url" --seconds 60 >/dev/null 2>&1 & done
-"$bin/role_peer" --role tracker --arena ROBOT --modules 3 --lcm-url "$url" --seconds 60 >/dev/null 2>&1 &
+for m in 0 1 2; do "$bin/ahhs-example-firmware" --arena ROBOT --id $m --lcm-url "$url" >/dev/null 2>&1 & done
+"$bin/ahhs-example-tracker" --arena ROBOT --modules 3 --lcm-url "$url" >/dev/null 2>&1 &
 "$bin/ahhs-sim" --physics none --no-confirm --arena ROBOT --lcm-url "$url" >$tmp/robot-server.out 2>&1 &
 "$bin/ahhs-worker" --any-run --lcm-url "${url/7743/7746}" --arena-kind processes --arena-name ROBOT --arena-url "$url" \
   --external sim --realtime >$tmp/robot-worker.out 2>&1 &
@@ -153,12 +154,12 @@ echo "3 episodes in real time on the episode server; fitness from the tracker: $
 for f in $fits; do awk -v f="$f" 'BEGIN { exit !(f > 0.1) }' || fail "fitness $f from the tracker"; done
 
 echo "== 8. a mixed organism: module 1's body is hardware"
-"$bin/role_peer" --role firmware --arena MIXED --id 1 --lcm-url "$url" --seconds 8 >$tmp/mixed-firmware.out 2>&1 &
+"$bin/ahhs-example-firmware" --arena MIXED --id 1 --lcm-url "$url" --seconds 8 >$tmp/mixed-firmware.out 2>&1 &
 fw=$!
 "$bin/ahhs-launch" --scenario gait --modules 3 --genome $tmp/g.json --seed 5 --duration 3 --realtime \
   --lcm-url "$url" --arena MIXED --hardware-modules 1 -v >$tmp/mixed.out 2>&1 || { cat $tmp/mixed.out; fail "mixed organism"; }
 wait $fw
-grep -q "received 60 hinge commands and 0 readings of others" $tmp/mixed-firmware.out ||
+grep -q "60 readings sent, 60 commands applied, 0 dropped, 0 readings of others" $tmp/mixed-firmware.out ||
   fail "firmware of module 1: $(cat $tmp/mixed-firmware.out)"
 followed=$(sed -n 's/.*hardware readings followed \([0-9]*\).*/\1/p' $tmp/mixed.out)
 (( ${followed:-0} >= 50 )) || fail "the sim followed ${followed:-no} hardware readings: $(grep ahhs-sim $tmp/mixed.out)"

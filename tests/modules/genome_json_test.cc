@@ -151,3 +151,16 @@ TEST_CASE("bad genome files of every kind are rejected, naming the field", "[gen
   j["rules"][1]["input"] = 0.5;
   ExpectRejected(j, "rules[1].input: must be an integer");
 }
+
+TEST_CASE("the genome hash is FNV-1a 64 over little-endian words, as docs/hardware.md says",
+          "[genome-file]") {
+  // Hand-computed (docs/hardware.md, "Genome hash"): the words 2, 1, 1, 1, 0 (variant, sensors,
+  // actuators, hormones, rules) and the doubles 0.5, 0.1, 0.2, each as 8 bytes, least
+  // significant first, through FNV-1a 64.
+  ahhs::modules::Genome g;
+  g.variant = ahhs::modules::Variant::kAhhs2;
+  g.num_sensors = 1;
+  g.num_actuators = 1;
+  g.hormones = {{0.5, 0.1, 0.2}};
+  CHECK(ahhs::modules::GenomeHash(g) == 0xc1b7a6fbecf4160bULL);
+}

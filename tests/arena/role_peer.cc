@@ -24,9 +24,7 @@ int main(int argc, char** argv) {
   std::string role, url, arena;
   int id = 0;
   double seconds = 10;
-  app.add_option("--role", role)
-      ->required()
-      ->check(CLI::IsMember({"wrong-hash-module", "button"}));
+  app.add_option("--role", role)->required()->check(CLI::IsMember({"wrong-hash-module", "button"}));
   app.add_option("--lcm-url", url)->required();
   app.add_option("--arena", arena)->required();
   app.add_option("--id", id);

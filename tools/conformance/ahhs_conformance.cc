@@ -1,0 +1,56 @@
+// ahhs-conformance: plays the counterpart roles against an implementation under test and checks
+// the protocol (docs/hardware.md, "Conformance kit"). Prints a checklist, PASS or FAIL with the
+// evidence, and exits 1 when a check fails.
+//   ahhs-conformance firmware --arena A --id N    a module's firmware (SENSORS, follows HINGE)
+//   ahhs-conformance tracker --arena A --modules N  a tracker (SIM/STATE)
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "bus/cli.h"
+#include "bus/fault_bus.h"
+#include "bus/lcm_bus.h"
+#include "tools/conformance/player.h"
+
+int main(int argc, char** argv) {
+  namespace ac = ahhs::conformance;
+  CLI::App app{
+      "ahhs-conformance: checks a firmware or a tracker against the protocol by playing the "
+      "episode server (and a controller) for it"};
+  std::string role, url = ahhs::bus::kDefaultLcmUrl;
+  ac::PlayOptions options;
+  double budget_ms = 25;
+  app.add_option("role", role, "firmware or tracker")
+      ->required()
+      ->check(CLI::IsMember({"firmware", "tracker"}));
+  app.add_option("--arena", options.arena, "the arena the implementation serves")->required();
+  app.add_option("--id", options.id, "firmware: its module")->check(CLI::Range(0, 1000));
+  app.add_option("--modules", options.modules, "tracker: modules it tracks")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  app.add_option("--lcm-url", url, "LCM URL")->capture_default_str();
+  app.add_option("--ticks", options.ticks, "ticks of the played episode")
+      ->check(CLI::Range(8, 100000))
+      ->capture_default_str();
+  app.add_option("--budget-ms", budget_ms,
+                 "longest time from SIM/CLOCK(t) to the message of tick t")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  try {
+    auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
+    ac::Budget budget;
+    budget.latency = budget_ms / 1000;
+    std::cout << "ahhs-conformance " << role << " on arena " << options.arena << " (" << url
+              << "): playing " << options.ticks << " ticks, then a late start\n"
+              << std::flush;
+    const auto checks = role == "firmware" ? ac::PlayFirmware(*bus, options, budget)
+                                           : ac::PlayTracker(*bus, options, budget);
+    std::string text;
+    const bool pass = ac::PrintChecklist(checks, &text);
+    std::cout << text << (pass ? "conformant\n" : "NOT conformant\n");
+    return pass ? 0 : ahhs::cli::kExitFailure;
+  } catch (const std::exception& e) {
+    std::cerr << "ahhs-conformance: " << e.what() << '\n';
+    return ahhs::cli::kExitFailure;
+  }
+}

@@ -176,11 +176,14 @@ int main(int argc, char** argv) {
   }
   char channel[256];
   snprintf(channel, sizeof channel, "%s/SIM/CLOCK", arena);
-  ahhs_sim_clock_t_subscribe(f.lcm, channel, on_clock, &f);
+  ahhs_sim_clock_t_subscription_t* clock_sub =
+      ahhs_sim_clock_t_subscribe(f.lcm, channel, on_clock, &f);
   snprintf(channel, sizeof channel, "%s/MODULE%d/HINGE", arena, id);
-  ahhs_hinge_command_t_subscribe(f.lcm, channel, on_hinge, &f);
+  ahhs_hinge_command_t_subscription_t* hinge_sub =
+      ahhs_hinge_command_t_subscribe(f.lcm, channel, on_hinge, &f);
   snprintf(f.sensors_channel, sizeof f.sensors_channel, "%s/MODULE%d/SENSORS", arena, id);
-  ahhs_module_sensors_t_subscribe(f.lcm, f.sensors_channel, on_sensors, &f);
+  ahhs_module_sensors_t_subscription_t* sensors_sub =
+      ahhs_module_sensors_t_subscribe(f.lcm, f.sensors_channel, on_sensors, &f);
   signal(SIGINT, on_signal);
   signal(SIGTERM, on_signal);
   const double end = now_s() + seconds;
@@ -189,6 +192,9 @@ int main(int argc, char** argv) {
       "firmware of module %d: %ld readings sent, %ld commands applied, %ld dropped, %ld "
       "readings of others on %s\n",
       id, f.readings, f.commands, f.dropped_commands, f.foreign_readings, f.sensors_channel);
+  ahhs_sim_clock_t_unsubscribe(f.lcm, clock_sub);
+  ahhs_hinge_command_t_unsubscribe(f.lcm, hinge_sub);
+  ahhs_module_sensors_t_unsubscribe(f.lcm, sensors_sub);
   lcm_destroy(f.lcm);
   return 0;
 }

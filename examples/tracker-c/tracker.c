@@ -135,13 +135,15 @@ int main(int argc, char** argv) {
   }
   char channel[256];
   snprintf(channel, sizeof channel, "%s/SIM/CLOCK", arena);
-  ahhs_sim_clock_t_subscribe(t.lcm, channel, on_clock, &t);
+  ahhs_sim_clock_t_subscription_t* clock_sub =
+      ahhs_sim_clock_t_subscribe(t.lcm, channel, on_clock, &t);
   snprintf(t.state_channel, sizeof t.state_channel, "%s/SIM/STATE", arena);
   signal(SIGINT, on_signal);
   signal(SIGTERM, on_signal);
   const double end = now_s() + seconds;
   while (!stop_requested && (seconds == 0 || now_s() < end)) lcm_handle_timeout(t.lcm, 100);
   printf("tracker of %d modules: %ld states sent on %s\n", modules, t.states, t.state_channel);
+  ahhs_sim_clock_t_unsubscribe(t.lcm, clock_sub);
   lcm_destroy(t.lcm);
   return 0;
 }

@@ -142,14 +142,8 @@ void EpisodeServer::Finish() {
 }
 
 void EpisodeServer::PublishClock(std::int8_t run_state) {
-  sim_clock_t c{};
+  auto c = ClockMessage(episode_, tick_, shape_.control_period, true, run_state);
   c.utime = bus::NowUtime();
-  c.episode = episode_;
-  c.tick = tick_;
-  c.sim_time = static_cast<double>(tick_) * shape_.control_period;
-  c.control_period = shape_.control_period;
-  c.clock_mode = sim_clock_t::MODE_REALTIME;
-  c.run_state = run_state;
   bus::PublishTyped(*bus_, channels_.SimClock(), c);
 }
 

@@ -82,6 +82,18 @@ topology_t TopologyMessage(const Scenario& scenario, std::int64_t episode) {
   return TopologyMessage(scenario.num_compartments(), scenario.Docking(), episode, scenario.tick());
 }
 
+sim_clock_t ClockMessage(std::int64_t episode, std::int64_t tick, double control_period,
+                         bool realtime, std::int8_t run_state) {
+  sim_clock_t c{};
+  c.episode = episode;
+  c.tick = tick;
+  c.sim_time = static_cast<double>(tick) * control_period;
+  c.control_period = control_period;
+  c.clock_mode = realtime ? sim_clock_t::MODE_REALTIME : sim_clock_t::MODE_LOCKSTEP;
+  c.run_state = run_state;
+  return c;
+}
+
 topology_t TopologyMessage(int compartments, const std::vector<std::pair<int, int>>& docking,
                            std::int64_t episode, std::int64_t tick) {
   topology_t m{};

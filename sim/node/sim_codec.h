@@ -3,6 +3,7 @@
 
 #include <ahhs/hinge_command_t.hpp>
 #include <ahhs/module_sensors_t.hpp>
+#include <ahhs/sim_clock_t.hpp>
 #include <ahhs/sim_control_t.hpp>
 #include <ahhs/sim_state_t.hpp>
 #include <ahhs/topology_t.hpp>
@@ -23,6 +24,9 @@ void FillSensorsMessage(const Scenario& scenario, int module, std::int64_t episo
 void FillStateMessage(const std::vector<BodyState>& bodies, std::int64_t episode, std::int64_t tick,
                       double sim_time, sim_state_t* m);
 topology_t TopologyMessage(const Scenario& scenario, std::int64_t episode);
+// SIM/CLOCK of `episode` at `tick` (sim_time = tick x control_period); the sender sets utime.
+sim_clock_t ClockMessage(std::int64_t episode, std::int64_t tick, double control_period,
+                         bool realtime, std::int8_t run_state);
 // The same from an organism's shape alone (the episode server has no Scenario).
 topology_t TopologyMessage(int compartments, const std::vector<std::pair<int, int>>& docking,
                            std::int64_t episode, std::int64_t tick);

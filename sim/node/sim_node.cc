@@ -309,16 +309,11 @@ void SimNode::PublishTickStart() {
 }
 
 void SimNode::PublishClock(std::int8_t run_state) {
-  sim_clock_t c{};
-  c.utime = bus::NowUtime();
-  c.episode = episode_;
-  c.tick = scenario_ ? scenario_->tick() : 0;
-  c.sim_time = scenario_ ? scenario_->sim_time() : 0;
-  c.control_period = scenario_ ? scenario_->control_period() : 0;
-  c.clock_mode = realtime_ ? sim_clock_t::MODE_REALTIME : sim_clock_t::MODE_LOCKSTEP;
-  c.run_state = run_state;
   last_run_state_ = run_state;
-  bus::PublishTyped(*bus_, clock_channel_, c);
+  bus::PublishTyped(
+      *bus_, clock_channel_,
+      ClockMessage(episode_, scenario_ ? scenario_->tick() : 0,
+                   scenario_ ? scenario_->control_period() : 0, realtime_, run_state));
 }
 
 void SimNode::PublishState(double sim_time) {

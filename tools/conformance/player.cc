@@ -10,6 +10,7 @@
 
 #include "bus/channels.h"
 #include "bus/typed.h"
+#include "sim/node/sim_codec.h"
 
 namespace ahhs::conformance {
 
@@ -59,14 +60,8 @@ class Player {
     Wait(o_.period);
   }
   void Publish(std::int64_t episode, std::int64_t tick, std::int8_t state) {
-    sim_clock_t c{};
+    auto c = sim::ClockMessage(episode, tick, o_.period, true, state);
     c.utime = bus::NowUtime();
-    c.episode = episode;
-    c.tick = tick;
-    c.sim_time = static_cast<double>(tick) * o_.period;
-    c.control_period = o_.period;
-    c.clock_mode = sim_clock_t::MODE_REALTIME;
-    c.run_state = state;
     bus::PublishTyped(bus_, ch_.SimClock(), c);
   }
   void Wait(double seconds) {

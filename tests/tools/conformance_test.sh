@@ -42,4 +42,7 @@ echo "== usage"
 code=0
 "$bin/ahhs-conformance" module --arena X >$tmp/usage.out 2>&1 || code=$?
 [[ $code -eq 2 ]] || fail "an unknown role: exit $code"
+code=0
+"$bin/ahhs-conformance" firmware --arena X >$tmp/usage.out 2>&1 || code=$?
+[[ $code -eq 2 ]] && grep -q "firmware needs --id N" $tmp/usage.out || fail "firmware without --id: exit $code, $(cat $tmp/usage.out)"
 echo "PASS"

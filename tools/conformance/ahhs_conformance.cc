@@ -25,8 +25,7 @@ int main(int argc, char** argv) {
   app.add_option("--arena", options.arena, "the arena the implementation serves")->required();
   app.add_option("--id", options.id, "firmware: its module")->check(CLI::Range(0, 1000));
   app.add_option("--modules", options.modules, "tracker: modules it tracks")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
+      ->check(CLI::Range(1, 1000));
   app.add_option("--lcm-url", url, "LCM URL")->capture_default_str();
   app.add_option("--ticks", options.ticks, "ticks of the played episode")
       ->check(CLI::Range(8, 100000))
@@ -36,6 +35,12 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (app.count(role == "firmware" ? "--id" : "--modules") == 0) {
+    std::cerr << "ahhs-conformance: " << role << " needs "
+              << (role == "firmware" ? "--id N (its module)" : "--modules N (modules it tracks)")
+              << '\n';
+    return ahhs::cli::kExitUsage;
+  }
   try {
     auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
     ac::Budget budget;

@@ -6,27 +6,167 @@
 //       its own tick count, and it follows every HINGE whatever its episode
 //   role_peer --role stale-tracker --lcm-url URL --arena A --modules N --seconds S
 //       a faulty tracker: states on every clock tick but with episode 0 (not copied)
-// (Correct firmware and tracker: examples/firmware-c, examples/tracker-c.)
+//   role_peer --role faulty-module --fault F --lcm-url URL --arena A --id N --seconds S
+//       a module controller that breaks one rule (ahhs-conformance module must fail it):
+//       reset-on-genome (a repeated GENOME rebuilds the controller), no-wait (steps on SENSORS
+//       without waiting for the neighbours' packets), any-episode (takes SENSORS and HORMONE of
+//       any episode)
+// (Correct ones: ahhs-module, examples/controller-lua, examples/firmware-c, examples/tracker-c.)
 //   role_peer --role button --lcm-url URL --arena A --seconds S
 //       an operator's button: SIM/CONTROL CONFIRM once, after S seconds
 #include <CLI/CLI.hpp>
 #include <ahhs/genome_t.hpp>
 #include <ahhs/hinge_command_t.hpp>
+#include <ahhs/hormone_packet_t.hpp>
 #include <ahhs/module_sensors_t.hpp>
 #include <ahhs/module_status_t.hpp>
 #include <ahhs/sim_clock_t.hpp>
 #include <ahhs/sim_control_t.hpp>
 #include <ahhs/sim_state_t.hpp>
+#include <ahhs/topology_t.hpp>
+#include <algorithm>
 #include <chrono>
 #include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "bus/channels.h"
 #include "bus/cli.h"
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
+#include "modules/core/hormone_system.h"
+#include "modules/node/genome_codec.h"
 
 using namespace ahhs;
+
+namespace {
+
+// A lockstep module controller with one planted fault (see the comment at the top).
+class FaultyModule {
+ public:
+  FaultyModule(bus::Bus& bus, const bus::ArenaChannels& ch, int id, std::string fault)
+      : bus_(bus), ch_(ch), id_(id), fault_(std::move(fault)) {
+    subs_.push_back(bus::SubscribeTyped<genome_t>(
+        bus_, ch_.Genome(), [this](const std::string&, const genome_t& m) { OnGenome(m); }));
+    subs_.push_back(bus::SubscribeTyped<topology_t>(
+        bus_, ch_.Topology(), [this](const std::string&, const topology_t& m) { OnTopology(m); }));
+    subs_.push_back(bus::SubscribeTyped<module_sensors_t>(
+        bus_, ch_.Sensors(id_), [this](const std::string&, const module_sensors_t& m) {
+          if (m.episode != episode_ && fault_ != "any-episode") return;
+          sensors_ = m;
+          TryStep();
+        }));
+  }
+
+ private:
+  void OnGenome(const genome_t& m) {
+    if (m.episode == episode_ && controller_ && fault_ != "reset-on-genome") {
+      if (step_ == 0) Ready();
+      return;
+    }
+    if (m.episode != episode_) NewEpisode(m.episode);
+    modules::Genome g;
+    if (!modules::GenomeFromMessage(m, &g).empty()) return;
+    controller_ = std::make_unique<modules::Controller>(std::move(g));
+    state_ = modules::MakeState(*controller_);
+    hash_ = m.genome_hash;
+    Ready();
+  }
+  void OnTopology(const topology_t& m) {
+    if (m.episode != episode_) NewEpisode(m.episode);
+    neighbours_.clear();
+    hormone_subs_.clear();
+    for (int k = 0; k < m.num_links; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      if (m.module_a[i] == id_) neighbours_.push_back(m.module_b[i]);
+      if (m.module_b[i] == id_) neighbours_.push_back(m.module_a[i]);
+    }
+    std::sort(neighbours_.begin(), neighbours_.end());
+    for (int n : neighbours_)
+      hormone_subs_.push_back(bus::SubscribeTyped<hormone_packet_t>(
+          bus_, ch_.Hormone(n), [this](const std::string&, const hormone_packet_t& p) {
+            if (p.episode != episode_ && fault_ != "any-episode") return;
+            packets_[{p.tick, p.from_module}] = p.amounts;
+            TryStep();
+          }));
+    topology_ = true;
+    Ready();
+  }
+  void NewEpisode(std::int64_t episode) {
+    episode_ = episode;
+    controller_.reset();
+    topology_ = false;
+    step_ = 0;
+    sensors_.reset();
+    packets_.clear();
+  }
+  void Ready() {
+    if (!controller_ || !topology_) return;
+    module_status_t s{};
+    s.utime = bus::NowUtime();
+    s.episode = episode_;
+    s.tick = -1;
+    s.module = id_;
+    s.state = module_status_t::READY;
+    s.genome_hash = hash_;
+    bus::PublishTyped(bus_, ch_.Status(id_), s);
+  }
+  void TryStep() {
+    if (!controller_ || !topology_ || !sensors_) return;
+    const std::int64_t t = sensors_->tick;
+    std::size_t have = 0;
+    for (int n : neighbours_) have += packets_.count({t - 1, n});
+    if (t > 0 && have < neighbours_.size() && fault_ != "no-wait") return;
+    for (auto it = packets_.begin(); it != packets_.end() && it->first.first < t;) {
+      modules::ReceiveHormones(it->second.data(), &*state_);
+      it = packets_.erase(it);
+    }
+    modules::TickInput in;
+    in.sensors = sensors_->values.data();
+    in.num_neighbours = static_cast<int>(neighbours_.size());
+    modules::Step(*controller_, in, &*state_);
+    hinge_command_t h{};
+    h.utime = bus::NowUtime();
+    h.episode = sensors_->episode;
+    h.tick = t;
+    h.module = id_;
+    h.num_actuators = static_cast<std::int16_t>(controller_->num_actuators());
+    h.values.assign(state_->actuators.data(), state_->actuators.data() + h.num_actuators);
+    h.present.assign(static_cast<std::size_t>(h.num_actuators), true);
+    h.target_angle = M_PI / 2 * h.values[0];
+    bus::PublishTyped(bus_, ch_.Hinge(id_), h);
+    hormone_packet_t p{};
+    p.utime = h.utime;
+    p.episode = sensors_->episode;
+    p.tick = t;
+    p.from_module = id_;
+    p.num_receivers = static_cast<std::int16_t>(neighbours_.size());
+    p.to_modules.assign(neighbours_.begin(), neighbours_.end());
+    p.num_hormones = static_cast<std::int16_t>(controller_->num_hormones());
+    p.amounts.assign(state_->outflow.begin(), state_->outflow.end());
+    bus::PublishTyped(bus_, ch_.Hormone(id_), p);
+    sensors_.reset();
+    ++step_;
+  }
+
+  bus::Bus& bus_;
+  const bus::ArenaChannels& ch_;
+  int id_;
+  std::string fault_;
+  std::int64_t episode_ = -1, hash_ = 0;
+  int step_ = 0;
+  std::unique_ptr<modules::Controller> controller_;
+  std::optional<modules::CompartmentState> state_;
+  bool topology_ = false;
+  std::vector<int> neighbours_;
+  std::optional<module_sensors_t> sensors_;
+  std::map<std::pair<std::int64_t, int>, std::vector<double>> packets_;
+  std::vector<bus::Subscription> hormone_subs_, subs_;
+};
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"external-role test peer"};
@@ -35,7 +175,11 @@ int main(int argc, char** argv) {
   double seconds = 10;
   app.add_option("--role", role)
       ->required()
-      ->check(CLI::IsMember({"wrong-hash-module", "button", "drifting-firmware", "stale-tracker"}));
+      ->check(CLI::IsMember(
+          {"wrong-hash-module", "button", "drifting-firmware", "stale-tracker", "faulty-module"}));
+  std::string fault;
+  app.add_option("--fault", fault)
+      ->check(CLI::IsMember({"reset-on-genome", "no-wait", "any-episode"}));
   app.add_option("--lcm-url", url)->required();
   app.add_option("--arena", arena)->required();
   app.add_option("--id", id);
@@ -47,6 +191,8 @@ int main(int argc, char** argv) {
   const bus::ArenaChannels ch(arena);
   int answered = 0, published = 0;
   std::vector<bus::Subscription> subs;
+  std::optional<FaultyModule> faulty;
+  if (role == "faulty-module") faulty.emplace(bus, ch, id, fault);
   if (role == "wrong-hash-module")
     subs.push_back(
         bus::SubscribeTyped<genome_t>(bus, ch.Genome(), [&](const std::string&, const genome_t& g) {

@@ -2,12 +2,17 @@
 # ahhs-conformance (docs/hardware.md, "Conformance kit"), inside a private network namespace:
 # the reference firmware and tracker (examples/) pass every check; a firmware on its own timer
 # that follows any episode's HINGE, and a tracker that does not copy the episode, fail the
-# checks they break, with the evidence, and exit 1.
+# checks they break, with the evidence, and exit 1. Module controllers: ahhs-module and the Lua
+# controller (examples/controller-lua) equal modules/core bit for bit in every segment; modules
+# that reset on a repeated GENOME, do not wait for their neighbours, or take any episode's
+# messages fail exactly the segments they break.
 bin=${1:?usage: conformance_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_netns "$0" "$@"
 url="udpm://239.255.42.52:7747?ttl=0&recv_buf_size=4194304"
 ahhs_scratch 'ahhs-[a-z-]+|role_peer'
+lua_pids=()
+trap 'kill "${lua_pids[@]}" 2>/dev/null; _ahhs_cleanup' EXIT
 kit() { "$bin/ahhs-conformance" "$@" --lcm-url "$url"; }
 
 echo "== the reference firmware and tracker pass"
@@ -38,11 +43,56 @@ grep -q "^FAIL one state per tick, with the clock's episode and tick: 60 ticks p
   fail "episode not copied, not caught: $(cat $tmp/bad-tr.out)"
 grep '^FAIL' $tmp/bad-fw.out $tmp/bad-tr.out
 
+echo "== module controllers: ahhs-module and the Lua controller pass"
+"$bin/ahhs-module" --id 2 --arena MOD --lcm-url "$url" >/dev/null 2>&1 &
+"$bin/ahhs-example-controller-lua" --id 4 --arena LUA --lcm-url "$url" --seconds 30 >$tmp/lua.err 2>&1 &
+lua_pids+=($!)
+sleep 0.3
+kit module --arena MOD --id 2 >$tmp/mod.out &
+kit module --arena LUA --id 4 >$tmp/lua.out || { cat $tmp/lua.out $tmp/lua.err; fail "the Lua controller"; }
+wait $! || { cat $tmp/mod.out; fail "ahhs-module"; }
+for who in mod lua; do
+  [[ $(grep -c '^PASS' $tmp/$who.out) -eq 14 ]] || fail "$who checklist: $(cat $tmp/$who.out)"
+  grep -q "^PASS equals the model bit for bit: real time, joined at tick 100: 30 ticks" $tmp/$who.out ||
+    fail "$who: $(cat $tmp/$who.out)"
+done
+grep "bit for bit: lockstep\|budget" $tmp/mod.out $tmp/lua.out
+
+echo "== module controllers: planted faults fail where they break the protocol"
+faults=(reset-on-genome no-wait any-episode)
+for f in "${faults[@]}"; do
+  "$bin/role_peer" --role faulty-module --fault $f --arena F$f --id 1 --lcm-url "$url" --seconds 20 >/dev/null 2>&1 &
+done
+sleep 0.3
+kits=()
+for f in "${faults[@]}"; do
+  (code=0; kit module --arena F$f --id 1 >$tmp/$f.out || code=$?; echo "exit $code" >>$tmp/$f.out) &
+  kits+=($!)
+done
+wait "${kits[@]}"
+for f in "${faults[@]}"; do grep -q "^exit 1" $tmp/$f.out || fail "$f: $(cat $tmp/$f.out)"; done
+expect() {  # FAULT LINE...: each line is in the checklist
+  local f=$1
+  shift
+  for line in "$@"; do grep -q "^$line" $tmp/$f.out || fail "$f: no '$line' in $(cat $tmp/$f.out)"; done
+}
+expect reset-on-genome "PASS equals the model bit for bit: lockstep, AHHS2" \
+  "FAIL equals the model bit for bit: after a repeated GENOME and TOPOLOGY: tick 20: HINGE values\[0\] = "
+expect no-wait "FAIL equals the model bit for bit: lockstep, AHHS2: tick 1: HINGE values\[0\] = " \
+  "FAIL equals the model bit for bit: a new episode (RESET): AHHS1, from rest: tick 1"
+expect any-episode "PASS equals the model bit for bit: after a repeated GENOME and TOPOLOGY" \
+  "FAIL one HINGE and one HORMONE per tick.* [1-9][0-9]* of the foreign episode" \
+  "FAIL equals the model bit for bit: a foreign episode's SENSORS and HORMONE ignored: tick 30"
+grep -h 'bit for bit.*tick [0-9]*: HINGE' $tmp/reset-on-genome.out $tmp/no-wait.out $tmp/any-episode.out
+
 echo "== usage"
 code=0
-"$bin/ahhs-conformance" module --arena X >$tmp/usage.out 2>&1 || code=$?
+"$bin/ahhs-conformance" planner --arena X >$tmp/usage.out 2>&1 || code=$?
 [[ $code -eq 2 ]] || fail "an unknown role: exit $code"
 code=0
 "$bin/ahhs-conformance" firmware --arena X >$tmp/usage.out 2>&1 || code=$?
 [[ $code -eq 2 ]] && grep -q "firmware needs --id N" $tmp/usage.out || fail "firmware without --id: exit $code, $(cat $tmp/usage.out)"
+code=0
+"$bin/ahhs-conformance" module --arena X >$tmp/usage.out 2>&1 || code=$?
+[[ $code -eq 2 ]] && grep -q "module needs --id N" $tmp/usage.out || fail "module without --id: exit $code, $(cat $tmp/usage.out)"
 echo "PASS"

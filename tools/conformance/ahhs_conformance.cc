@@ -1,6 +1,7 @@
 // ahhs-conformance: plays the counterpart roles against an implementation under test and checks
 // the protocol (docs/hardware.md, "Conformance kit"). Prints a checklist, PASS or FAIL with the
 // evidence, and exits 1 when a check fails.
+//   ahhs-conformance module --arena A --id N      a module controller (HINGE, HORMONE, STATUS)
 //   ahhs-conformance firmware --arena A --id N    a module's firmware (SENSORS, follows HINGE)
 //   ahhs-conformance tracker --arena A --modules N  a tracker (SIM/STATE)
 #include <CLI/CLI.hpp>
@@ -9,21 +10,23 @@
 #include "bus/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
+#include "tools/conformance/module_player.h"
 #include "tools/conformance/player.h"
 
 int main(int argc, char** argv) {
   namespace ac = ahhs::conformance;
   CLI::App app{
-      "ahhs-conformance: checks a firmware or a tracker against the protocol by playing the "
-      "episode server (and a controller) for it"};
+      "ahhs-conformance: checks a module controller, a firmware or a tracker against the "
+      "protocol by playing the roles around it"};
   std::string role, url = ahhs::bus::kDefaultLcmUrl;
   ac::PlayOptions options;
   double budget_ms = 25;
-  app.add_option("role", role, "firmware or tracker")
+  app.add_option("role", role, "module, firmware or tracker")
       ->required()
-      ->check(CLI::IsMember({"firmware", "tracker"}));
+      ->check(CLI::IsMember({"module", "firmware", "tracker"}));
   app.add_option("--arena", options.arena, "the arena the implementation serves")->required();
-  app.add_option("--id", options.id, "firmware: its module")->check(CLI::Range(0, 1000));
+  app.add_option("--id", options.id, "module, firmware: the module under test")
+      ->check(CLI::Range(0, 1000));
   app.add_option("--modules", options.modules, "tracker: modules it tracks")
       ->check(CLI::Range(1, 1000));
   app.add_option("--lcm-url", url, "LCM URL")->capture_default_str();
@@ -34,11 +37,14 @@ int main(int argc, char** argv) {
                  "longest time from SIM/CLOCK(t) to the message of tick t")
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
+  std::uint64_t seed = 1;
+  app.add_option("--seed", seed, "module: seed of the genomes, sensor values and packets played")
+      ->capture_default_str();
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
-  if (app.count(role == "firmware" ? "--id" : "--modules") == 0) {
+  const bool tracker = role == "tracker";
+  if (app.count(tracker ? "--modules" : "--id") == 0) {
     std::cerr << "ahhs-conformance: " << role << " needs "
-              << (role == "firmware" ? "--id N (its module)" : "--modules N (modules it tracks)")
-              << '\n';
+              << (tracker ? "--modules N (modules it tracks)" : "--id N (its module)") << '\n';
     return ahhs::cli::kExitUsage;
   }
   try {
@@ -46,10 +52,23 @@ int main(int argc, char** argv) {
     ac::Budget budget;
     budget.latency = budget_ms / 1000;
     std::cout << "ahhs-conformance " << role << " on arena " << options.arena << " (" << url
-              << "): playing " << options.ticks << " ticks, then a late start\n"
+              << "): "
+              << (role == "module"
+                      ? "playing launcher, sim and neighbours for 3 episodes"
+                      : "playing " + std::to_string(options.ticks) + " ticks, then a late start")
+              << '\n'
               << std::flush;
-    const auto checks = role == "firmware" ? ac::PlayFirmware(*bus, options, budget)
-                                           : ac::PlayTracker(*bus, options, budget);
+    std::vector<ac::Check> checks;
+    if (role == "module") {
+      ac::ModulePlayOptions m;
+      m.arena = options.arena;
+      m.id = options.id;
+      m.seed = seed;
+      checks = ac::PlayModule(*bus, m, budget);
+    } else {
+      checks = role == "firmware" ? ac::PlayFirmware(*bus, options, budget)
+                                  : ac::PlayTracker(*bus, options, budget);
+    }
     std::string text;
     const bool pass = ac::PrintChecklist(checks, &text);
     std::cout << text << (pass ? "conformant\n" : "NOT conformant\n");

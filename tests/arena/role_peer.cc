@@ -11,6 +11,10 @@
 //       reset-on-genome (a repeated GENOME rebuilds the controller), no-wait (steps on SENSORS
 //       without waiting for the neighbours' packets), any-episode (takes SENSORS and HORMONE of
 //       any episode)
+//   role_peer --role faulty-server --lcm-url URL --arena A --seconds S
+//       an episode server (ahhs-conformance sim must fail it): its clock runs on its own 19 Hz
+//       timer, any episode's STOP ends the episode, FINISHED goes out once, and it answers a
+//       RESET of any scenario
 // (Correct ones: ahhs-module, examples/controller-lua, examples/firmware-c, examples/tracker-c.)
 //   role_peer --role button --lcm-url URL --arena A --seconds S
 //       an operator's button: SIM/CONTROL CONFIRM once, after S seconds
@@ -42,6 +46,75 @@
 using namespace ahhs;
 
 namespace {
+
+// An episode server with the faults listed at the top.
+class FaultyServer {
+ public:
+  FaultyServer(bus::Bus& bus, const bus::ArenaChannels& ch) : bus_(bus), ch_(ch) {
+    sub_ = bus::SubscribeTyped<sim_control_t>(
+        bus_, ch_.SimControl(), [this](const std::string&, const sim_control_t& m) {
+          if (m.command == sim_control_t::RESET && !(running_ && m.episode == episode_)) {
+            episode_ = m.episode;
+            ticks_ = static_cast<std::int64_t>(m.duration / 0.05 + 0.5);
+            modules_ = m.num_modules;
+            running_ = false;
+            tick_ = 0;
+            Clock(sim_clock_t::RESET);
+            topology_t t{};
+            t.utime = bus::NowUtime();
+            t.episode = episode_;
+            t.num_modules = modules_;
+            t.ports_per_module = 4;
+            t.num_links = static_cast<std::int16_t>(modules_ - 1);
+            for (int k = 0; k + 1 < modules_; ++k) {
+              t.module_a.push_back(k);
+              t.port_a.push_back(2);
+              t.module_b.push_back(k + 1);
+              t.port_b.push_back(0);
+            }
+            bus::PublishTyped(bus_, ch_.Topology(), t);
+          } else if (m.command == sim_control_t::START && m.episode == episode_ && !running_ &&
+                     tick_ == 0) {
+            running_ = true;
+            next_ = std::chrono::steady_clock::now();
+          } else if (m.command == sim_control_t::STOP && running_) {  // any episode's
+            running_ = false;
+            Clock(sim_clock_t::FINISHED);
+          }
+        });
+  }
+  void Tick() {
+    if (!running_ || std::chrono::steady_clock::now() < next_) return;
+    next_ += std::chrono::microseconds(1000000 / 19);  // its own timer
+    if (tick_ == ticks_) {
+      running_ = false;
+      Clock(sim_clock_t::FINISHED);  // once
+      return;
+    }
+    Clock(sim_clock_t::RUNNING);
+    ++tick_;
+  }
+
+ private:
+  void Clock(std::int8_t state) {
+    sim_clock_t c{};
+    c.utime = bus::NowUtime();
+    c.episode = episode_;
+    c.tick = tick_;
+    c.sim_time = static_cast<double>(tick_) * 0.05;
+    c.control_period = 0.05;
+    c.clock_mode = sim_clock_t::MODE_REALTIME;
+    c.run_state = state;
+    bus::PublishTyped(bus_, ch_.SimClock(), c);
+  }
+  bus::Bus& bus_;
+  const bus::ArenaChannels& ch_;
+  std::int64_t episode_ = 0, tick_ = 0, ticks_ = 0;
+  int modules_ = 0;
+  bool running_ = false;
+  std::chrono::steady_clock::time_point next_;
+  bus::Subscription sub_;
+};
 
 // A lockstep module controller with one planted fault (see the comment at the top).
 class FaultyModule {
@@ -175,8 +248,8 @@ int main(int argc, char** argv) {
   double seconds = 10;
   app.add_option("--role", role)
       ->required()
-      ->check(CLI::IsMember(
-          {"wrong-hash-module", "button", "drifting-firmware", "stale-tracker", "faulty-module"}));
+      ->check(CLI::IsMember({"wrong-hash-module", "button", "drifting-firmware", "stale-tracker",
+                             "faulty-module", "faulty-server"}));
   std::string fault;
   app.add_option("--fault", fault)
       ->check(CLI::IsMember({"reset-on-genome", "no-wait", "any-episode"}));
@@ -193,6 +266,8 @@ int main(int argc, char** argv) {
   std::vector<bus::Subscription> subs;
   std::optional<FaultyModule> faulty;
   if (role == "faulty-module") faulty.emplace(bus, ch, id, fault);
+  std::optional<FaultyServer> server;
+  if (role == "faulty-server") server.emplace(bus, ch);
   if (role == "wrong-hash-module")
     subs.push_back(
         bus::SubscribeTyped<genome_t>(bus, ch.Genome(), [&](const std::string&, const genome_t& g) {
@@ -243,7 +318,8 @@ int main(int argc, char** argv) {
   const auto end = std::chrono::steady_clock::now() +
                    std::chrono::milliseconds(static_cast<long>(seconds * 1000));
   while (std::chrono::steady_clock::now() < end) {
-    bus.Handle(std::chrono::milliseconds(5));
+    bus.Handle(std::chrono::milliseconds(server ? 1 : 5));
+    if (server) server->Tick();
     if (role != "drifting-firmware" || episode < 0 ||
         std::chrono::steady_clock::now() < next_reading)
       continue;

@@ -5,7 +5,8 @@
 # checks they break, with the evidence, and exit 1. Module controllers: ahhs-module and the Lua
 # controller (examples/controller-lua) equal modules/core bit for bit in every segment; modules
 # that reset on a repeated GENOME, do not wait for their neighbours, or take any episode's
-# messages fail exactly the segments they break.
+# messages fail exactly the segments they break. Episode servers: ahhs-sim and ahhs-sim --physics
+# none pass; a server on its own timer that obeys any episode's STOP fails.
 bin=${1:?usage: conformance_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_netns "$0" "$@"
@@ -16,28 +17,32 @@ trap 'kill "${lua_pids[@]}" 2>/dev/null; _ahhs_cleanup' EXIT
 kit() { "$bin/ahhs-conformance" "$@" --lcm-url "$url"; }
 
 echo "== the reference firmware and tracker pass"
-"$bin/ahhs-example-firmware" --arena OK --id 2 --lcm-url "$url" --seconds 20 >/dev/null &
-"$bin/ahhs-example-tracker" --arena OK --modules 3 --lcm-url "$url" --seconds 20 >/dev/null &
+"$bin/ahhs-example-firmware" --arena OKFW --id 2 --lcm-url "$url" --seconds 20 >/dev/null &
+"$bin/ahhs-example-tracker" --arena OKTR --modules 3 --lcm-url "$url" --seconds 20 >/dev/null &
 sleep 0.3
-kit firmware --arena OK --id 2 >$tmp/fw.out || { cat $tmp/fw.out; fail "the reference firmware"; }
+kit firmware --arena OKFW --id 2 >$tmp/fw.out &
+fw_kit=$!
+kit tracker --arena OKTR --modules 3 >$tmp/tr.out || { cat $tmp/tr.out; fail "the reference tracker"; }
+wait $fw_kit || { cat $tmp/fw.out; fail "the reference firmware"; }
 [[ $(grep -c '^PASS' $tmp/fw.out) -eq 7 ]] || fail "firmware checklist: $(cat $tmp/fw.out)"
-kit tracker --arena OK --modules 3 >$tmp/tr.out || { cat $tmp/tr.out; fail "the reference tracker"; }
 [[ $(grep -c '^PASS' $tmp/tr.out) -eq 5 ]] || fail "tracker checklist: $(cat $tmp/tr.out)"
 grep "budget" $tmp/fw.out $tmp/tr.out
 
 echo "== planted faults fail"
-"$bin/role_peer" --role drifting-firmware --arena BAD --id 1 --lcm-url "$url" --seconds 20 >/dev/null &
-"$bin/role_peer" --role stale-tracker --arena BAD --modules 3 --lcm-url "$url" --seconds 20 >/dev/null &
+"$bin/role_peer" --role drifting-firmware --arena BADFW --id 1 --lcm-url "$url" --seconds 20 >/dev/null &
+"$bin/role_peer" --role stale-tracker --arena BADTR --modules 3 --lcm-url "$url" --seconds 20 >/dev/null &
 sleep 0.3
+(code=0; kit tracker --arena BADTR --modules 3 >$tmp/bad-tr.out || code=$?; echo $code >$tmp/bad-tr.code) &
+bad_tr_kit=$!
 code=0
-kit firmware --arena BAD --id 1 >$tmp/bad-fw.out || code=$?
+kit firmware --arena BADFW --id 1 >$tmp/bad-fw.out || code=$?
 [[ $code -eq 1 ]] || { cat $tmp/bad-fw.out; fail "a drifting firmware: exit $code, not 1"; }
 grep -q "^FAIL one reading per tick" $tmp/bad-fw.out || fail "drift not caught: $(cat $tmp/bad-fw.out)"
 grep -q "^FAIL follows HINGE of its episode, ignores a foreign episode's: last hinge_angle -1" $tmp/bad-fw.out ||
   fail "foreign HINGE not caught: $(cat $tmp/bad-fw.out)"
 grep -q "NOT conformant" $tmp/bad-fw.out || fail "no verdict"
-code=0
-kit tracker --arena BAD --modules 3 >$tmp/bad-tr.out || code=$?
+wait $bad_tr_kit
+code=$(cat $tmp/bad-tr.code)
 [[ $code -eq 1 ]] || { cat $tmp/bad-tr.out; fail "a stale tracker: exit $code, not 1"; }
 grep -q "^FAIL one state per tick, with the clock's episode and tick: 60 ticks played: 60 without" $tmp/bad-tr.out ||
   fail "episode not copied, not caught: $(cat $tmp/bad-tr.out)"
@@ -84,6 +89,31 @@ expect any-episode "PASS equals the model bit for bit: after a repeated GENOME a
   "FAIL one HINGE and one HORMONE per tick.* [1-9][0-9]* of the foreign episode" \
   "FAIL equals the model bit for bit: a foreign episode's SENSORS and HORMONE ignored: tick 30"
 grep -h 'bit for bit.*tick [0-9]*: HINGE' $tmp/reset-on-genome.out $tmp/no-wait.out $tmp/any-episode.out
+
+echo "== episode servers: ahhs-sim and ahhs-sim --physics none pass, a faulty one fails"
+"$bin/ahhs-sim" --arena SIM --lcm-url "$url" >/dev/null 2>&1 &
+"$bin/ahhs-sim" --physics none --arena SRV --lcm-url "$url" </dev/null >$tmp/srv.err 2>&1 &
+"$bin/role_peer" --role faulty-server --arena FSRV --lcm-url "$url" --seconds 20 >/dev/null 2>&1 &
+sleep 0.3
+kit sim --arena SIM >$tmp/sim.out &
+sim_kit=$!
+(code=0; kit sim --arena FSRV >$tmp/fsrv.out || code=$?; echo "exit $code" >>$tmp/fsrv.out) &
+fsrv_kit=$!
+kit sim --arena SRV >$tmp/srv.out || { cat $tmp/srv.out $tmp/srv.err; fail "ahhs-sim --physics none"; }
+wait $sim_kit || { cat $tmp/sim.out; fail "ahhs-sim"; }
+wait $fsrv_kit
+for who in sim srv; do
+  [[ $(grep -c '^PASS' $tmp/$who.out) -eq 9 ]] || fail "$who checklist: $(cat $tmp/$who.out)"
+done
+grep -q "^PASS SENSORS.*120 of 120" $tmp/sim.out || fail "sim SENSORS: $(cat $tmp/sim.out)"
+grep -q "^PASS SENSORS.*none: an episode server" $tmp/srv.out || fail "server SENSORS: $(cat $tmp/srv.out)"
+grep -q "^exit 1" $tmp/fsrv.out || fail "faulty server: $(cat $tmp/fsrv.out)"
+for line in "FAIL keeps real time" "FAIL ignores another episode's PAUSE and STOP" \
+  "FAIL ends after 40 ticks: SIM/CLOCK FINISHED three times.*: 1 FINISHED" \
+  "FAIL refuses a bad RESET (unknown scenario): 5 clocks"; do
+  grep -q "^$line" $tmp/fsrv.out || fail "faulty server: no '$line' in $(cat $tmp/fsrv.out)"
+done
+grep -h "keeps real time" $tmp/sim.out $tmp/srv.out $tmp/fsrv.out
 
 echo "== usage"
 code=0

@@ -4,6 +4,8 @@
 //   ahhs-conformance module --arena A --id N      a module controller (HINGE, HORMONE, STATUS)
 //   ahhs-conformance firmware --arena A --id N    a module's firmware (SENSORS, follows HINGE)
 //   ahhs-conformance tracker --arena A --modules N  a tracker (SIM/STATE)
+//   ahhs-conformance sim --arena A                an episode server in real time (SIM/CLOCK,
+//   TOPOLOGY)
 #include <CLI/CLI.hpp>
 #include <iostream>
 
@@ -12,18 +14,20 @@
 #include "bus/lcm_bus.h"
 #include "tools/conformance/module_player.h"
 #include "tools/conformance/player.h"
+#include "tools/conformance/sim_player.h"
 
 int main(int argc, char** argv) {
   namespace ac = ahhs::conformance;
   CLI::App app{
-      "ahhs-conformance: checks a module controller, a firmware or a tracker against the "
+      "ahhs-conformance: checks a module controller, a firmware, a tracker or an episode server "
+      "against the "
       "protocol by playing the roles around it"};
   std::string role, url = ahhs::bus::kDefaultLcmUrl;
   ac::PlayOptions options;
   double budget_ms = 25;
-  app.add_option("role", role, "module, firmware or tracker")
+  app.add_option("role", role, "module, firmware, tracker or sim")
       ->required()
-      ->check(CLI::IsMember({"module", "firmware", "tracker"}));
+      ->check(CLI::IsMember({"module", "firmware", "tracker", "sim"}));
   app.add_option("--arena", options.arena, "the arena the implementation serves")->required();
   app.add_option("--id", options.id, "module, firmware: the module under test")
       ->check(CLI::Range(0, 1000));
@@ -42,7 +46,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
   const bool tracker = role == "tracker";
-  if (app.count(tracker ? "--modules" : "--id") == 0) {
+  if (role != "sim" && app.count(tracker ? "--modules" : "--id") == 0) {
     std::cerr << "ahhs-conformance: " << role << " needs "
               << (tracker ? "--modules N (modules it tracks)" : "--id N (its module)") << '\n';
     return ahhs::cli::kExitUsage;
@@ -51,15 +55,16 @@ int main(int argc, char** argv) {
     auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
     ac::Budget budget;
     budget.latency = budget_ms / 1000;
+    std::string plan = "playing " + std::to_string(options.ticks) + " ticks, then a late start";
+    if (role == "module") plan = "playing launcher, sim and neighbours for 3 episodes";
+    if (role == "sim") plan = "playing the launcher for 2 real-time episodes and a bad RESET";
     std::cout << "ahhs-conformance " << role << " on arena " << options.arena << " (" << url
-              << "): "
-              << (role == "module"
-                      ? "playing launcher, sim and neighbours for 3 episodes"
-                      : "playing " + std::to_string(options.ticks) + " ticks, then a late start")
-              << '\n'
+              << "): " << plan << '\n'
               << std::flush;
     std::vector<ac::Check> checks;
-    if (role == "module") {
+    if (role == "sim") {
+      checks = ac::PlaySim(*bus, {options.arena}, budget);
+    } else if (role == "module") {
       ac::ModulePlayOptions m;
       m.arena = options.arena;
       m.id = options.id;

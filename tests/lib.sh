@@ -25,6 +25,7 @@ ahhs_scratch() {
 
 _ahhs_cleanup() {
   if [[ -n "$_ahhs_kill" ]]; then pkill -g "$pg" -KILL -f "$bin/($_ahhs_kill)" 2>/dev/null; fi
+  if declare -F ahhs_lan_down >/dev/null; then ahhs_lan_down; fi  # tests/lan.sh
   rm -rf "$tmp"
 }
 

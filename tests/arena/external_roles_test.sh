@@ -11,7 +11,8 @@
 #  6. a physical organism, emulated: ahhs-sim --physics none as the episode server, the C
 #     reference firmware (examples/) per module, the C tracker stub; the episode waits for the operator (Enter, or a button's
 #     SIM/CONTROL CONFIRM) and gives up without one;
-#  7. evolution on the emulated physical organism: ahhs-worker --realtime --external sim;
+#  7. evolution on the emulated physical organism, controllers on the boards: ahhs-worker
+#     --realtime --external sim,modules;
 #  8. a mixed organism: ahhs-launch --hardware-modules 1 with the C firmware for module 1: the
 #     sim publishes no readings for it and its body follows the firmware's hinge angle.
 bin=${1:?usage: external_roles_test.sh BIN_DIR}
@@ -139,11 +140,14 @@ grep -q "no confirmation within 1 s; given up" $tmp/noone-server.out || fail "se
 grep -q "no answer to the episode handshake from the sim (external)" $tmp/noone.out || fail "launcher without operator: $(cat $tmp/noone.out)"
 echo "without the operator: $(grep 'given up' $tmp/noone-server.out)"
 echo "== 7. evolution on a physical organism, episode after episode"
-for m in 0 1 2; do "$bin/ahhs-example-firmware" --arena ROBOT --id $m --lcm-url "$url" >/dev/null 2>&1 & done
+for m in 0 1 2; do  # each board: firmware and controller (docs/hardware.md, worked example)
+  "$bin/ahhs-example-firmware" --arena ROBOT --id $m --lcm-url "$url" >/dev/null 2>&1 &
+  "$bin/ahhs-module" --arena ROBOT --id $m --lcm-url "$url" >/dev/null 2>&1 &
+done
 "$bin/ahhs-example-tracker" --arena ROBOT --modules 3 --lcm-url "$url" >/dev/null 2>&1 &
 "$bin/ahhs-sim" --physics none --no-confirm --arena ROBOT --lcm-url "$url" >$tmp/robot-server.out 2>&1 &
 "$bin/ahhs-worker" --any-run --lcm-url "${url/7743/7746}" --arena-kind processes --arena-name ROBOT --arena-url "$url" \
-  --external sim --realtime >$tmp/robot-worker.out 2>&1 &
+  --external sim,modules --realtime >$tmp/robot-worker.out 2>&1 &
 "$bin/ahhs-evolve" --scenario gait --modules 3 --variant ahhs2 --hormones 5 --rules 10 --population 3 --generations 1 \
   --duration 1 --seed 9 --out $tmp/robot --workers 0 --worker-wait 20 --lcm-url "${url/7743/7746}" >$tmp/robot.out 2>&1 ||
   { cat $tmp/robot.out $tmp/robot-worker.out $tmp/robot-server.out; fail "evolution on the physical organism"; }

@@ -8,42 +8,13 @@
 # the bridge towards host 1, 30 % of IP fragments and 30 % of the datagrams over 1000 bytes (the
 # genome pieces) are lost. No farm message may be fragmented any more, and the run must give the
 # loss-free results within 3x the loss-free time (+3 s).
-set -uo pipefail
 bin=${1:?usage: lan_test.sh BIN_DIR}
-skip() { echo "SKIPPED: $*"; exit 77; }
-[[ $(id -u) == 0 ]] || skip "needs root to make network namespaces (ip netns)"
-command -v ip >/dev/null || skip "ip (iproute2) not found"
-tag=ahhs$$
-sw=$tag-sw
-hosts=($tag-h0 $tag-h1 $tag-h2)
-tmp=$(mktemp -d)
-cleanup() {
-  for h in "${hosts[@]}"; do
-    ip netns pids $h 2>/dev/null | xargs -r kill -KILL 2>/dev/null
-    ip netns del $h 2>/dev/null
-  done
-  ip netns del $sw 2>/dev/null
-  rm -rf "$tmp"
-}
-trap cleanup EXIT
-fail() { echo "FAIL: $*"; exit 1; }
-ip netns add $sw 2>/dev/null || skip "cannot create network namespaces here"
-ip -n $sw link add br0 type bridge || fail "bridge"
-ip -n $sw link set br0 type bridge mcast_snooping 0
-ip -n $sw link set br0 up
-for i in 0 1 2; do
-  h=${hosts[$i]}
-  ip netns add $h || fail "netns $h"
-  ip link add v$i netns $h type veth peer name p$i netns $sw || fail "veth $i"
-  ip -n $sw link set p$i master br0
-  ip -n $sw link set p$i up
-  ip -n $h link set lo up
-  ip -n $h addr add 10.213.0.$((i + 1))/24 dev v$i
-  ip -n $h link set v$i up
-  ip -n $h link set v$i multicast on
-  ip -n $h route add 224.0.0.0/4 dev v$i
-done
-in_host() { local h=$1; shift; ip netns exec "$h" "$@"; }
+source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
+source "${AHHS_SOURCE_DIR:?}/tests/lan.sh"
+ahhs_scratch
+ahhs_lan 3
+sw=$lan_switch
+hosts=("${lan_hosts[@]}")
 url="udpm://239.255.42.70:7761?ttl=1&recv_buf_size=4194304"
 args="--scenario gait --hormones 3 --rules 6 --population 8 --generations 6 --duration 3 --seed 21 --lcm-url $url"
 dump() {

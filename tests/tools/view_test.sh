@@ -98,10 +98,11 @@ grep -q "not an LCM log" <("$bin/ahhs-view" text.lcm 2>&1) || fail "text"
 
 echo "== 3. a live multi-process arena (real time), a page that joins while it runs"
 start_view --lcm-url "$url" --arena VIEW3
-"$bin/ahhs-launch" --scenario pendulum --genome "$pend" --realtime --duration 12 --arena VIEW3 \
+"$bin/ahhs-launch" --scenario pendulum --genome "$pend" --realtime --duration 20 --arena VIEW3 \
   --lcm-url "$url" >launch3.out 2>&1 &
 launch=$!
-# Its panel: a live viewer listens to a module's sensors and commands once a page asks.
+# Its panel: a live viewer listens to a module's sensors and commands once a page asks. The
+# episode is long enough for a page whose Chromium takes 15 s to start on a loaded machine.
 s=$(js '(async () => { ahhs.select(1); await new Promise(r => setTimeout(r, 1500));
           const s = ahhs.stats(); s.bob = ahhs.screenPos(1); return s; })()' \
   --wait 'window.ahhs && ahhs.stats().tick > 100' --screenshot live.png)

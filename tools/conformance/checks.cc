@@ -10,13 +10,6 @@ namespace ahhs::conformance {
 
 namespace {
 
-std::string Ms(double seconds) {
-  std::ostringstream s;
-  s.precision(1);
-  s << std::fixed << seconds * 1000 << " ms";
-  return s.str();
-}
-
 // The checks every clock-driven role shares: nothing before START, one message per tick of both
 // phases with the clock's episode and tick, latency within the budget, sane sizes and values.
 void JudgeTicks(const PlayedClock& clock, const std::vector<Observed>& seen, const Budget& budget,
@@ -102,6 +95,13 @@ std::vector<Check> JudgeTracker(const PlayedClock& clock, const std::vector<Obse
   std::vector<Check> checks;
   JudgeTicks(clock, states, budget, "state", &checks);
   return checks;
+}
+
+std::string Ms(double seconds) {
+  std::ostringstream s;
+  s.precision(1);
+  s << std::fixed << seconds * 1000 << " ms";
+  return s.str();
 }
 
 bool PrintChecklist(const std::vector<Check>& checks, std::string* text) {

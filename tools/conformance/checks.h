@@ -52,6 +52,9 @@ std::vector<Check> JudgeFirmware(const PlayedClock& clock, const std::vector<Obs
 std::vector<Check> JudgeTracker(const PlayedClock& clock, const std::vector<Observed>& states,
                                 const Budget& budget);
 
+// "12.3 ms": a duration in seconds as evidence.
+std::string Ms(double seconds);
+
 // "PASS name: evidence" lines; returns whether every check passed.
 bool PrintChecklist(const std::vector<Check>& checks, std::string* text);
 

@@ -14,13 +14,6 @@ namespace ahhs::conformance {
 
 namespace {
 
-std::string Ms(double seconds) {
-  std::ostringstream s;
-  s.precision(1);
-  s << std::fixed << seconds * 1000 << " ms";
-  return s.str();
-}
-
 std::string Exact(double v) {
   std::ostringstream s;
   s.precision(17);

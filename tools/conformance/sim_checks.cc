@@ -9,13 +9,6 @@ namespace ahhs::conformance {
 
 namespace {
 
-std::string Ms(double seconds) {
-  std::ostringstream s;
-  s.precision(1);
-  s << std::fixed << seconds * 1000 << " ms";
-  return s.str();
-}
-
 constexpr std::int8_t kReset = 0, kRunning = 1, kPaused = 2, kFinished = 3;  // sim_clock_t
 constexpr std::int8_t kRealtime = 1;
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The Lua 5.2 module controller (examples/controller-lua), inside a private network namespace:
 # as an external module of a lockstep gait arena it gives ahhs-module's fitness to the bit, for
-# random AHHS2 and AHHS1 genomes and for an evolved gait of the paper study; bad options exit 2.
+# random AHHS2 and AHHS1 genomes, an evolved gait and an evolved pendulum (ownership masks) of the
+# paper study; bad options exit 2.
 # (Its protocol checklist is in tests/tools/conformance_test.sh.)
 bin=${1:?usage: lua_controller_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
@@ -15,7 +16,7 @@ fit() { tail -1 "$1" | sed -n 's/^fitness: //p'; }
 same_fitness() {  # NAME LUA_ID GENOME LAUNCH_OPTIONS...: Lua as module LUA_ID = all ahhs-module
   local name=$1 id=$2 genome=$3
   shift 3
-  local launch=("$bin/ahhs-launch" --scenario gait --genome "$genome" --lcm-url "$url" "$@")
+  local launch=("$bin/ahhs-launch" --genome "$genome" --lcm-url "$url" "$@")
   "${launch[@]}" --arena REF$name >$tmp/$name-ref.out 2>&1 || { cat $tmp/$name-ref.out; fail "$name: reference"; }
   "$bin/ahhs-example-controller-lua" --id $id --arena LUA$name --lcm-url "$url" --seconds 60 >$tmp/$name.lua 2>&1 &
   lua+=($!)
@@ -32,13 +33,18 @@ same_fitness() {  # NAME LUA_ID GENOME LAUNCH_OPTIONS...: Lua as module LUA_ID =
 echo "== random genomes, 3-module gait"
 "$bin/ahhs-genome" random --variant ahhs2 --hormones 5 --rules 30 --sensors 4 --actuators 1 --seed 3 >$tmp/a2.json
 "$bin/ahhs-genome" random --variant ahhs1 --hormones 5 --rules 40 --sensors 4 --actuators 1 --seed 3 >$tmp/a1.json
-same_fitness AHHS2 1 $tmp/a2.json --modules 3 --seed 5 --duration 4
-same_fitness AHHS1 0 $tmp/a1.json --modules 3 --seed 5 --duration 4
+same_fitness AHHS2 1 $tmp/a2.json --scenario gait --modules 3 --seed 5 --duration 4
+same_fitness AHHS1 0 $tmp/a1.json --scenario gait --modules 3 --seed 5 --duration 4
 
 echo "== an evolved gait (studies/paper-2010, gait-fixed-ahhs1-20 seed 2)"
 run="$AHHS_SOURCE_DIR/studies/paper-2010/gait-fixed-ahhs1-20/seed-2"
 seed=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['best_eval_seed'])" "$run/summary.json")
-same_fitness EVOLVED 2 "$run/best.json" --modules 5 --joints fixed --seed "$seed"
+same_fitness EVOLVED 2 "$run/best.json" --scenario gait --modules 5 --joints fixed --seed "$seed"
+
+echo "== an evolved pendulum (AHHS2-15 seed 1): compartments own some of the shared slots"
+run="$AHHS_SOURCE_DIR/studies/paper-2010/pendulum-ahhs2-15/seed-1"
+seed=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['best_eval_seed'])" "$run/summary.json")
+same_fitness PENDULUM 1 "$run/best.json" --scenario pendulum --seed "$seed" --duration 20
 
 echo "== bad options"
 for args in "" "--id x" "--id 1 --seconds 0" "--id 1 --colour red"; do

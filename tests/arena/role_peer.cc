@@ -149,14 +149,17 @@ class FaultyModule {
   }
   void OnTopology(const topology_t& m) {
     if (m.episode != episode_) NewEpisode(m.episode);
-    neighbours_.clear();
-    hormone_subs_.clear();
+    std::vector<int> neighbours;
     for (int k = 0; k < m.num_links; ++k) {
       const auto i = static_cast<std::size_t>(k);
-      if (m.module_a[i] == id_) neighbours_.push_back(m.module_b[i]);
-      if (m.module_b[i] == id_) neighbours_.push_back(m.module_a[i]);
+      if (m.module_a[i] == id_) neighbours.push_back(m.module_b[i]);
+      if (m.module_b[i] == id_) neighbours.push_back(m.module_a[i]);
     }
-    std::sort(neighbours_.begin(), neighbours_.end());
+    std::sort(neighbours.begin(), neighbours.end());
+    topology_ = true;
+    if (neighbours == neighbours_ && !hormone_subs_.empty()) return Ready();
+    neighbours_ = neighbours;
+    hormone_subs_.clear();
     for (int n : neighbours_)
       hormone_subs_.push_back(bus::SubscribeTyped<hormone_packet_t>(
           bus_, ch_.Hormone(n), [this](const std::string&, const hormone_packet_t& p) {
@@ -164,7 +167,6 @@ class FaultyModule {
             packets_[{p.tick, p.from_module}] = p.amounts;
             TryStep();
           }));
-    topology_ = true;
     Ready();
   }
   void NewEpisode(std::int64_t episode) {

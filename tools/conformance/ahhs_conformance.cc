@@ -34,11 +34,13 @@ int main(int argc, char** argv) {
   app.add_option("--modules", options.modules, "tracker: modules it tracks")
       ->check(CLI::Range(1, 1000));
   app.add_option("--lcm-url", url, "LCM URL")->capture_default_str();
-  app.add_option("--ticks", options.ticks, "ticks of the played episode")
+  app.add_option("--ticks", options.ticks, "firmware, tracker: ticks of the played episode")
       ->check(CLI::Range(8, 100000))
       ->capture_default_str();
-  app.add_option("--budget-ms", budget_ms,
-                 "longest time from SIM/CLOCK(t) to the message of tick t")
+  app.add_option(
+         "--budget-ms", budget_ms,
+         "longest time from a tick's last input to the answer (firmware, tracker: SIM/CLOCK; "
+         "module: SENSORS and packets); sim: a tick's distance from its schedule")
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
   std::uint64_t seed = 1;

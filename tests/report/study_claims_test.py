@@ -29,12 +29,13 @@ def config(name, bests, speed=None, **extra):
     return c
 
 
-def rows(configs):
+def rows(configs, stat="best"):
     maxima = {}
     for c in configs:
         if c.runs:
             maxima[c.task] = max(maxima.get(c.task, 0), float(np.max(c.best)))
-    return {claim: (ours, verdict) for claim, _, ours, verdict in sr.make_claims(configs, maxima)}
+    return {claim: (ours, verdict)
+            for claim, _, ours, verdict in sr.make_claims(configs, maxima, stat)}
 
 
 rng = np.random.default_rng(1)
@@ -69,4 +70,29 @@ assert r["Fixed gait: AHHS2-20 performs badly"][1] == "reproduced", r
 r = rows([config("gait-damped-ahhs2-30", list(1.0 + 0.1 * rng.random(10))),
           config("gait-damped-ahhs1-120", list(0.6 + 0.9 * rng.random(10)))])
 assert r["Damped gait: AHHS1 runs vary more"][1] == "reproduced", r
+# The robust pass judges the same claims on each run's robust fitness: here the AHHS1 bests are
+# knife-edges (high bests, low robust fitness), so the robust verdicts turn round.
+bests = lambda lo: list(lo + 0.1 * rng.random(6))
+damped = [config("gait-damped-ahhs2-30", bests(0.6), robust=np.array(bests(0.55))),
+          config("gait-damped-ahhs1-120", bests(2.5), robust=np.array(bests(0.3)))]
+r, rr = rows(damped), rows(damped, "robust")
+claim = "Damped gait: high fitness in every setting, no significant difference"
+assert r[claim][1] == rr[claim][1] == "differs: significant difference", (r, rr)
+assert "medians 0.6" in r[claim][0] and "vs 2.5" in r[claim][0], r[claim]
+assert "medians 0.5" in rr[claim][0] and "vs 0.3" in rr[claim][0], rr[claim]
+pend = [config("pendulum-ahhs2-15", bests(0.3), robust=np.array(bests(0.6))),
+        config("pendulum-ahhs1-60", bests(0.6), robust=np.array(bests(0.3)))]
+r, rr = rows(pend), rows(pend, "robust")
+assert r["Pendulum: AHHS2-15 is better than AHHS1-60"][1] == "opposite: AHHS1-60 is better", r
+assert rr["Pendulum: AHHS2-15 is better than AHHS1-60"][1] == "reproduced", rr
+# Evolution speed is not about runs' fitness: judged once, an empty robust row.
+assert rr["Pendulum: evolution speed (generation reaching 75 % of the maximum)"] == (None, None)
+# A configuration without robust fitness (its replays failed) gives no robust verdict.
+pend[0].robust = None
+rr = rows(pend, "robust")
+assert rr["Pendulum: AHHS2-15 is better than AHHS1-60"][1] == "open", rr
+# Both passes have the same claims in the same order; merged, six columns.
+maxima = {"pendulum": 0.7}
+merged = sr.merge_claims(sr.make_claims(pend, maxima), sr.make_claims(pend, maxima, "robust"))
+assert all(len(row) == 6 for row in merged), merged
 print("study claims: PASS")

@@ -349,6 +349,9 @@ def report_study(args):
             c.robustness = c.robustness_runs[int(np.argmax(c.best))]
             medians = [x["median"] for x in c.robustness_runs]
             c.robust = None if None in medians else np.array(medians)
+            if not args.no_replay:
+                c.neighbourhood = neighbourhood_of(
+                    bin_dir, c, os.path.join(args.out, c.task, f"neighbourhood-{c.name}"))
     for task, cs in tasks.items():
         robust = [c for c in cs if c.robust is not None]
         if robust:
@@ -356,9 +359,6 @@ def report_study(args):
                        "robust fitness of the run's best", "Robust fitness of each run's best "
                        "genome (median of 8 replays, friction x 0.975-1.025), Wilcoxon rank-sum",
                        "box_robust", os.path.join(args.out, task), [])
-            if not args.no_replay:
-                c.neighbourhood = neighbourhood_of(
-                    bin_dir, c, os.path.join(args.out, c.task, f"neighbourhood-{c.name}"))
     claims = merge_claims(make_claims(configs, maxima, "best"),
                           make_claims(configs, maxima, "robust"))
     write_results(args, name, configs, tasks, maxima, claims)

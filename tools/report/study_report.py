@@ -242,8 +242,14 @@ def make_claims(configs, maxima, stat="best"):
               f"vs {iqr['gait-damped-ahhs2-30']:.3f} (AHHS2-30)",
               "reproduced" if iqr["gait-damped-ahhs1-120"] > iqr["gait-damped-ahhs2-30"]
               else "differs")
-    # Fixed docking (second simulator version).
+    # Fixed docking (second simulator version). Our maximum: the task's best fitness, or in the
+    # robust pass the highest robust fitness of its runs.
     top = maxima.get("gait-fixed")
+    if stat != "best":
+        robust = [c.values(n) for n, x in c.by.items()
+                  if x.task == "gait-fixed" and x.runs and c.values(n) is not None]
+        top = max(float(np.max(v)) for v in robust) if robust else None
+    ours_max = "our maximum" if stat == "best" else "our highest robust fitness"
     for name, share in (("gait-fixed-ahhs2-50", 0.55), ("gait-fixed-ahhs1-80", 0.38)):
         label = name.split("-", 2)[2].upper()
         claim = f"Fixed gait: share of {label} runs within 80 % of the maximum"
@@ -252,7 +258,7 @@ def make_claims(configs, maxima, stat="best"):
             ours = c.within(name, 0.8 * PAPER_FIXED_MAXIMUM)
             own = c.within(name, 0.8 * top)
             c.add(claim, paper, f"{ours:.0%} of {len(c.get(name).runs)} runs >= 1.36 (80 % of 1.7); "
-                  f"{own:.0%} within 80 % of our maximum {top:.3f}",
+                  f"{own:.0%} within 80 % of {ours_max} {top:.3f}",
                   "close" if abs(ours - share) <= 0.15 else "differs")
     claim = "Fixed gait: AHHS1-20 differs significantly from AHHS1-80 and from AHHS2-50"
     paper = "yes, and no other pair differs significantly"

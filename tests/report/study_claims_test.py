@@ -95,7 +95,8 @@ assert rr["Pendulum: AHHS2-15 is better than AHHS1-60"][1] == "open", rr
 fixed = [config("gait-fixed-ahhs2-50", [3.0] * 5 + [1.0] * 5, robust=np.array([0.5] * 9 + [0.6])),
          config("gait-fixed-ahhs1-80", [1.0] * 10, robust=np.array([0.3] * 10))]
 ours = rows(fixed, "robust")["Fixed gait: share of AHHS2-50 runs within 80 % of the maximum"][0]
-assert ours == "0% of 10 runs >= 1.36 (80 % of 1.7); 100% within 80 % of our highest robust fitness 0.600", ours
+assert ours == ("0% of 10 runs >= 1.36 (80 % of 1.7); "
+                "100% within 80 % of our highest robust fitness 0.600"), ours
 ours = rows(fixed)["Fixed gait: share of AHHS2-50 runs within 80 % of the maximum"][0]
 assert ours.endswith("50% within 80 % of our maximum 3.000"), ours
 # Both passes have the same claims in the same order; merged, six columns.

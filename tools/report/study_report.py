@@ -220,7 +220,8 @@ def make_claims(configs, maxima, stat="best"):
               verdict)
     claim = "Pendulum: evolution speed (generation reaching 75 % of the maximum)"
     paper = "no significant difference"
-    if not c.not_fitness(claim, paper) and not c.missing(claim, paper, "pendulum-ahhs2-15", "pendulum-ahhs1-60"):
+    if not c.not_fitness(claim, paper) and not c.missing(claim, paper, "pendulum-ahhs2-15",
+                                                         "pendulum-ahhs1-60"):
         p = c.speed_test("pendulum-ahhs2-15", "pendulum-ahhs1-60")
         a, b = (float(np.median(c.get(n).speed)) for n in ("pendulum-ahhs2-15", "pendulum-ahhs1-60"))
         c.add(claim, paper, f"medians {a:g} (AHHS2-15) vs {b:g} (AHHS1-60), p = {fmt(p)}",
@@ -387,15 +388,17 @@ def write_results(args, name, configs, tasks, maxima, claims):
           "Judged twice: on each run's best fitness (the paper's statistic), and on the robust "
           "fitness of each run's best genome (the median of 8 replays with the friction scaled "
           "0.975-1.025). Claims that are not about runs' fitness are judged once.", "",
-          "| claim | the paper | ours: each run's best | verdict | ours: robust | verdict (robust) |",
+          "| claim | the paper | ours: each run's best | verdict | ours: robust | "
+          "verdict (robust) |",
           "|---|---|---|---|---|---|"]
     md += [f"| {a} | {b} | {c} | {d} | {'-' if e is None else e} | {'-' if f is None else f} |"
            for a, b, c, d, e, f in claims]
     md += ["", "## Configurations", "",
            "Best fitness is each run's best (the paper's statistic). Robust: a best genome "
            "replayed with the friction scaled 0.975-1.025 (8 replays, median), for the "
-           "configuration's best and for each run's; an evolved gait best is usually far above it (docs/scenarios.md, \"Physics step and "
-           "deterministic chaos\"). Rules: share of the rules of the runs' best genomes that "
+           "configuration's best and for each run's; an evolved gait best is usually far above "
+           "it (docs/scenarios.md, \"Physics step and deterministic chaos\"). Rules: share of the "
+           "rules of the runs' best genomes that "
            "never or seldom (< 1 % of ticks) trigger; hormones: touched by a rule part active in "
            ">= 1 % of ticks (median over runs).", "",
            "| configuration | runs | best fitness: median (quartiles) | max | robust median of the max | "
@@ -416,7 +419,8 @@ def write_results(args, name, configs, tasks, maxima, claims):
         robust = "-" if c.robust is None else "{1:.3f} ({0:.3f} / {2:.3f})".format(
             *np.percentile(c.robust, [25, 50, 75]))
         md.append(f"| {c.name} | {len(c.runs)} of {c.planned} | {med:.3f} ({q1:.3f} / {q3:.3f}) | "
-                  f"{np.max(c.best):.3f} | {fmt(c.robustness['median'])} | {robust} | {within:.0%} | "
+                  f"{np.max(c.best):.3f} | {fmt(c.robustness['median'])} | {robust} | "
+                  f"{within:.0%} | "
                   f"{np.median(c.speed):g} | {quiet:.0%} | "
                   f"{hormones:g} of {c.controllers[0]['hormones']} |")
         results["configs"][c.name] = {

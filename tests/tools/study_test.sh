@@ -147,6 +147,8 @@ grep -q "results.md, results.json and one directory per task (4 of 4 runs comple
 # The paper's claims name the paper's configurations; this plan has none of them.
 grep -q "| Pendulum: AHHS2-15 is better than AHHS1-60 | yes, Wilcoxon p < 0.05 (n = 10 AHHS2, 8 AHHS1) | not run yet" $tmp/RA/results.md ||
   fail "claims: $(cat $tmp/RA/results.md)"
+grep -q "^Every run's best genome replays to its stored fitness bit for bit with this build (4 of 4)." $tmp/RA/results.md ||
+  fail "reproduction: $(cat $tmp/RA/results.md)"
 "$S" export $tmp/A $tmp/E2 >/dev/null && "$S" report $tmp/E2 -o $tmp/RE --no-replay >/dev/null 2>&1 || fail "report of an export"
 python3 -c "
 import json
@@ -164,6 +166,18 @@ for v in a.values():
     assert len(v['robust']) == v['runs'] == len(runs) and all(r['replays'] == 8 for r in runs), v
     assert v['robustness'] == runs[v['best'].index(max(v['best']))], v
 " || fail "study and export reports differ"
+# A best genome this build does not reproduce (here: its stored fitness one part in 1e9 off) is
+# named, in results.md, results.json and on stderr.
+cp -r $tmp/E2 $tmp/E3
+python3 -c "
+import json
+f = '$tmp/E3/pend2/seed-1/best.json'
+g = json.load(open(f)); g['meta']['fitness'] *= 1 + 1e-9; json.dump(g, open(f, 'w'))"
+"$S" report $tmp/E3 -o $tmp/R3 --no-replay >$tmp/out 2>&1 || fail "report E3: $(cat $tmp/out)"
+grep -q "warning: 1 of 4 runs' best genomes do not replay to their stored fitness" $tmp/out &&
+  grep -q "^\*\*1 of 4 runs' best genomes do not replay to their stored fitness with this build\*\* ($tmp/E3/pend2/seed-1)" $tmp/R3/results.md &&
+  python3 -c "import json; assert json.load(open('$tmp/R3/results.json'))['replay_differs'] == ['$tmp/E3/pend2/seed-1']" ||
+  fail "a best genome not reproduced: $(cat $tmp/out; head -5 $tmp/R3/results.md)"
 "$S" report $tmp/A -o $tmp/RA >$tmp/out 2>&1; [[ $? == 2 ]] && grep -q "pass --overwrite" $tmp/out || fail "report over a report: $(cat $tmp/out)"
 "$S" report $tmp/A -o $tmp/RA --overwrite --no-replay >/dev/null 2>&1 && [[ ! -e $tmp/RA/pendulum/neighbourhood-pend1 ]] ||
   fail "--overwrite left the old report's files"

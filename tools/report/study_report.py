@@ -8,8 +8,9 @@ seed-<k>/summary.json), in the plan's order (study.toml), and writes into OUT_DI
   <task>/neighbourhood-<config>/   35 single mutants of the configuration's best genome
   results.md       the paper's claims, one per row, with our figures beside them
   results.json     the numbers behind results.md
-Every run's best genome is replayed once (rule activity, hormones in use) and 8 times with
-perturbed frictions (ahhs-replay --robustness): its robust fitness is the median of those 8.
+Every run's best genome is replayed once (rule activity, hormones in use, and whether this build
+reproduces its stored fitness bit for bit) and 8 times with perturbed frictions (ahhs-replay
+--robustness): its robust fitness is the median of those 8.
 Each claim about runs' fitness is judged twice: on each run's best fitness (the paper's
 statistic) and on the robust fitness of each run's best, since an evolved gait best is often a
 knife-edge of deterministic chaos (docs/scenarios.md).
@@ -17,6 +18,7 @@ knife-edge of deterministic chaos (docs/scenarios.md).
 import argparse
 import json
 import os
+import sys
 import tempfile
 import tomllib
 from collections import OrderedDict
@@ -82,8 +84,8 @@ def controller_use(bin_dir, run, scratch):
     """Replays the run's best genome: which rules trigger, which hormones active rules touch."""
     rules_csv = os.path.join(scratch, "rules.csv")
     body_csv = os.path.join(scratch, "body.csv")
-    run_replay(bin_dir, run.replay_argv() + ["--rules-csv", rules_csv, "--body-csv", body_csv,
-                                             "--overwrite"])
+    out = run_replay(bin_dir, run.replay_argv() + ["--rules-csv", rules_csv, "--body-csv",
+                                                   body_csv, "--overwrite"])
     ticks = max(1, len(np.atleast_1d(np.genfromtxt(body_csv, delimiter=",", names=True))))
     parts = rule_parts(rules_csv, ticks)
     with open(os.path.join(run.path, "best.json")) as f:
@@ -94,7 +96,14 @@ def controller_use(bin_dir, run, scratch):
     return {"rules": len(genome["rules"]), "never": int(np.sum(share == 0)),
             "seldom": int(np.sum((share > 0) & (share < SELDOM))),
             "active": int(np.sum(share >= SELDOM)), "hormones": len(genome["hormones"]),
-            "hormones_used": len(hormones)}
+            "hormones_used": len(hormones), "reproduced": replay_reproduced(out)}
+
+
+def replay_reproduced(out):
+    """ahhs-replay's verdict on the stored fitness: True (bit for bit), False, None (none)."""
+    if ": reproduced exactly" in out:
+        return True
+    return False if "stored fitness" in out else None
 
 
 def robustness_of(bin_dir, run, scratch):
@@ -377,13 +386,32 @@ def merge_claims(best, robust):
     return [b + (r[2], r[3]) for b, r in zip(best, robust)]
 
 
+def reproduction(configs):
+    """(sentence for results.md, runs whose best genome this build does not reproduce)."""
+    verdicts = [(r.path, u["reproduced"]) for c in configs for r, u in zip(c.runs, c.controllers)]
+    differ = [p for p, v in verdicts if v is False]
+    exact = sum(1 for _, v in verdicts if v)
+    if not differ:
+        return (f"Every run's best genome replays to its stored fitness bit for bit with this "
+                f"build ({exact} of {len(verdicts)}).", differ)
+    return (f"**{len(differ)} of {len(verdicts)} runs' best genomes do not replay to their "
+            "stored fitness with this build** (" + ", ".join(differ) + "): the study was "
+            "evaluated by a build whose physics or controller differ, so the replays below (robust "
+            "fitness, mutation neighbourhoods, rules) describe other behaviour than its fitness.",
+            differ)
+
+
 def write_results(args, name, configs, tasks, maxima, claims):
     complete = sum(len(c.runs) for c in configs)
     planned = sum(c.planned for c in configs)
+    replayed, differ = reproduction(configs)
+    if differ:
+        print(f"ahhs-study report: warning: {len(differ)} of {complete} runs' best genomes do not "
+              "replay to their stored fitness with this build (results.md)", file=sys.stderr)
     md = [f"# Results: study `{name}` against Hamann et al. (ALife 2010)", "",
           f"From {complete} complete runs of the {planned} planned "
           f"(`ahhs-study report {os.path.basename(os.path.normpath(args.study))}`). A row whose "
-          "configurations have no complete run yet says so.", "",
+          "configurations have no complete run yet says so.", "", replayed, "",
           "## The paper's claims", "",
           "Judged twice: on each run's best fitness (the paper's statistic), and on the robust "
           "fitness of each run's best genome (the median of 8 replays with the friction scaled "
@@ -407,7 +435,7 @@ def write_results(args, name, configs, tasks, maxima, claims):
            "hormones used |",
            "|---|---|---|---|---|---|---|---|---|---|"]
     results = {"study": name, "complete_runs": complete, "planned_runs": planned,
-               "maxima": maxima, "configs": {}, "claims": claims}
+               "replay_differs": differ, "maxima": maxima, "configs": {}, "claims": claims}
     for c in configs:
         if not c.runs:
             md.append(f"| {c.name} | 0 of {c.planned} | not run yet | | | | | | | |")

@@ -103,4 +103,24 @@ assert ours.endswith("50% within 80 % of our maximum 3.000"), ours
 maxima = {"pendulum": 0.7}
 merged = sr.merge_claims(sr.make_claims(pend, maxima), sr.make_claims(pend, maxima, "robust"))
 assert all(len(row) == 6 for row in merged), merged
+# Whether this build reproduces each run's best: "every" only when all do; a run whose replay
+# differs is named; a run with no stored fitness is neither.
+class Path:
+    def __init__(self, path):
+        self.path = path
+
+
+def replayed(*verdicts):
+    c = config("pendulum-ahhs1-60", [0.5] * len(verdicts))
+    c.runs = [Path(f"seed-{k + 1}") for k in range(len(verdicts))]
+    c.controllers = [{"reproduced": v} for v in verdicts]
+    return sr.reproduction([c])
+
+
+text, differ = replayed(True, True)
+assert text.startswith("Every run's best genome replays") and text.endswith("(2 of 2).") and not differ
+text, differ = replayed(True, None)
+assert text.startswith("1 of 2 runs' best genomes replay") and not differ, text
+text, differ = replayed(True, False, None)
+assert text.startswith("**1 of 3 runs' best genomes do not replay") and differ == ["seed-2"], text
 print("study claims: PASS")

@@ -73,10 +73,14 @@ for k in 1 2 3; do
   fi
   same_study $tmp/A $tmp/B "kill -9 #$k ($(grep -c '^\[.*complete' $tmp/B.out) runs had completed)"
 done
-rm -rf $tmp/B
+# B.out is emptied first: the background shell may truncate it only after the wait below has
+# read the last study's "started".
+rm -rf $tmp/B; : >$tmp/B.out
 "$S" run $tmp/plan.toml --out $tmp/B $opts >$tmp/B.out 2>&1 &
 pid=$!
-for _ in $(seq 100); do grep -q started $tmp/B.out 2>/dev/null && break; sleep 0.05; done
+# (Up to 60 s: on a loaded machine making the study can take more than a few seconds.)
+for _ in $(seq 1200); do grep -q started $tmp/B.out 2>/dev/null && break; sleep 0.05; done
+grep -q started $tmp/B.out || fail "the first ahhs-study started no run in 60 s: $(cat $tmp/B.out)"
 "$S" run --resume $tmp/B $opts >$tmp/out 2>&1; rc=$?
 [[ $rc == 1 ]] && grep -q "is in use by another ahhs-study run" $tmp/out || fail "second ahhs-study: $rc $(cat $tmp/out)"
 kill -INT $pid; wait $pid; rc=$?

@@ -391,9 +391,12 @@ def reproduction(configs):
     verdicts = [(r.path, u["reproduced"]) for c in configs for r, u in zip(c.runs, c.controllers)]
     differ = [p for p, v in verdicts if v is False]
     exact = sum(1 for _, v in verdicts if v)
-    if not differ:
+    if exact == len(verdicts):
         return (f"Every run's best genome replays to its stored fitness bit for bit with this "
                 f"build ({exact} of {len(verdicts)}).", differ)
+    if not differ:
+        return (f"{exact} of {len(verdicts)} runs' best genomes replay to their stored fitness "
+                "bit for bit with this build; the others store no fitness to compare.", differ)
     return (f"**{len(differ)} of {len(verdicts)} runs' best genomes do not replay to their "
             "stored fitness with this build** (" + ", ".join(differ) + "): the study was "
             "evaluated by a build whose physics or controller differ, so the replays below (robust "

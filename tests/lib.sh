@@ -12,8 +12,16 @@ fail() {
   exit 1
 }
 
+# Also gives the test a process group of its own: CTest runs every test in CTest's own group, so
+# without this `pgrep -g "$pg"` and the cleanup would reach the processes of any test running
+# beside it (unit tests do; multiprocess ones are RUN_SERIAL). setsid does not fork here (under
+# CTest the test is not a group leader); run by hand from a shell, the test already leads its own
+# group and keeps it, so Ctrl-C still reaches it.
 ahhs_netns() {
-  [[ "${AHHS_IN_NETNS:-}" == 1 ]] || exec "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$@"
+  [[ "${AHHS_IN_NETNS:-}" == 1 ]] && return
+  local own=()
+  [[ $(ps -o pgid= -p $$ | tr -d ' ') == "$$" ]] || own=(setsid)
+  exec "${own[@]}" "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$@"
 }
 
 ahhs_scratch() {

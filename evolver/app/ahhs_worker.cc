@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
+#include <regex>
 #include <thread>
 
 #include "bus/cli.h"
@@ -41,10 +42,15 @@ std::string HostName() {
 // Every process on a multicast port receives every datagram sent to it, and in a lockstep arena
 // that per-datagram cost is most of the time: arenas sharing a port (or sharing it with the
 // farm) slow each other down several times. So each worker's arena gets a port of its own,
-// 7668 + pid % 4000 (a collision costs speed, never correctness: arenas have unique names).
-std::string PrivateArenaUrl() {
-  return "udpm://239.255.76.67:" + std::to_string(7668 + getpid() % 4000) +
-         "?ttl=0&recv_buf_size=4194304";
+// 7668 + pid % 4000 (a collision costs speed, never correctness: arenas have unique names), but
+// never the farm's port, whose datagrams a lossy link or a filter may drop.
+std::string PrivateArenaUrl(const std::string& farm_url) {
+  int port = 7668 + getpid() % 4000;
+  static const std::regex kUdpmPort(R"(^udpm://[^:/?]*:([0-9]{1,5})([?/]|$))");
+  std::smatch m;
+  if (std::regex_search(farm_url, m, kUdpmPort) && std::stoi(m[1].str()) == port)
+    port = port == 11667 ? 7668 : port + 1;
+  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
 }
 
 }  // namespace
@@ -136,7 +142,7 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
   const std::string host = HostName();
-  if (arena_url_option->count() == 0) arena_url = PrivateArenaUrl();
+  if (arena_url_option->count() == 0) arena_url = PrivateArenaUrl(url);
 
   if (slots > 1) {
     // One process per slot (ODE's solver RNG is process-global); this one only supervises.

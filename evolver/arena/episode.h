@@ -29,6 +29,9 @@ struct EpisodeSpec {
   // physical module may come later and join the running episode).
   std::chrono::milliseconds realtime_join_wait{1500};
   std::chrono::seconds episode_timeout{3600};
+  // Lockstep: fail when neither the sim's clock nor the fitness monitor shows progress for this
+  // long after START (0 = never). Exact lockstep stalls on a lost datagram instead of going on.
+  std::chrono::seconds stall_timeout{0};
   // The fused arena's bus: inproc:// (bus/in_process_bus.h, the default: no system call per
   // message) or memq:// (LCM's in-process provider). Results are the same to the bit.
   std::string fused_url = "inproc://";

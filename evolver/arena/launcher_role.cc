@@ -38,6 +38,14 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
   bool sim_ready = false, monitor_ready = false;
   std::optional<fitness_t> final_fitness;
   std::int8_t run_state = -1;
+  // The stall watchdog: the furthest tick the sim's clock or the monitor showed, and when.
+  std::int64_t progress_tick = -1;
+  auto progress_at = Clock::now();
+  auto progress = [&](std::int64_t tick) {
+    if (tick <= progress_tick) return;
+    progress_tick = tick;
+    progress_at = Clock::now();
+  };
   const std::int64_t ep = spec.episode;
   std::vector<bus::Subscription> subs;
   const genome_t genome = modules::GenomeMessage(spec.genome, ep);
@@ -64,6 +72,9 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
   subs.push_back(bus::SubscribeTyped<sim_clock_t>(bus, ch.SimClock(),
                                                   [&](const std::string&, const sim_clock_t& c) {
                                                     if (c.episode != ep) return;
+                                                    if (c.run_state != run_state)
+                                                      progress_at = Clock::now();
+                                                    progress(c.tick);
                                                     run_state = c.run_state;
                                                     if (c.run_state == sim_clock_t::RESET)
                                                       sim_ready = true;
@@ -71,6 +82,7 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
   subs.push_back(bus::SubscribeTyped<fitness_t>(bus, ch.Fitness(),
                                                 [&](const std::string&, const fitness_t& f) {
                                                   if (f.episode != ep) return;
+                                                  progress(f.tick);
                                                   monitor_ready = true;
                                                   if (f.is_final) final_fitness = f;
                                                 }));
@@ -133,8 +145,18 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
   const auto episode_end = Clock::now() + spec.episode_timeout;
   auto next_genome = Clock::now() + std::chrono::seconds(1);
   auto next_start = Clock::now();
+  progress_at = Clock::now();
+  const bool watch_stalls = spec.stall_timeout.count() > 0 && !spec.realtime;
   while (!final_fitness) {
     if (!alive(&why)) return finish({false, 0, 0, why, 0});
+    if (watch_stalls && Clock::now() > progress_at + spec.stall_timeout)
+      return finish({false, 0, 0,
+                     "the episode stalled: no progress for " +
+                         std::to_string(spec.stall_timeout.count()) + " s after tick " +
+                         std::to_string(std::max<std::int64_t>(progress_tick, 0)) +
+                         " (exact lockstep waits for every message: one was lost, or a process "
+                         "stopped)",
+                     0});
     if (run_state == sim_clock_t::RESET && Clock::now() >= next_start) {
       c.utime = bus::NowUtime();
       bus::PublishTyped(bus, ch.SimControl(), c);

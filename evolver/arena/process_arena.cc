@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -63,7 +64,7 @@ ProcessArena::ProcessArena(ProcessArenaOptions options) : options_(std::move(opt
         children_.Start("ahhs-module " + std::to_string(m),
                         {dir + "/ahhs-module", "--id", std::to_string(m), "--lcm-url", url,
                          "--arena", options_.arena, "--hormone-timeout-ms",
-                         std::to_string(std::max(1, options_.lockstep_timeout_ms / 4))},
+                         std::to_string(HormoneTimeoutMs(options_.lockstep_timeout_ms))},
                         quiet);
     // Our own bus is opened after the children are forked, so that no child inherits its
     // sockets.
@@ -75,6 +76,10 @@ ProcessArena::ProcessArena(ProcessArenaOptions options) : options_(std::move(opt
 }
 
 ProcessArena::~ProcessArena() = default;
+
+int HormoneTimeoutMs(int lockstep_timeout_ms) {
+  return lockstep_timeout_ms == 0 ? 0 : std::max(1, lockstep_timeout_ms / 4);
+}
 
 bool ProcessArena::ChildrenAlive(std::string* why) {
   const auto ended = children_.Reap();
@@ -90,9 +95,16 @@ EpisodeResult ProcessArena::Run(EpisodeSpec spec,
   spec.arena = options_.arena;
   spec.external = options_.external;
   spec.external_timeout = options_.external_timeout;
+  const bool exact = options_.lockstep_timeout_ms == 0 && !spec.realtime;
+  if (exact) spec.stall_timeout = options_.stall_timeout;
   auto alive = [&](std::string* why) { return keep_going(why) && ChildrenAlive(why); };
   EpisodeResult result = RunEpisode(
       *bus_, spec, [&](std::chrono::microseconds w) { bus_->Handle(w); }, alive);
+  if (exact && result.ok && result.states_missed > 0) {
+    result.ok = false;
+    result.error = "the fitness monitor missed " + std::to_string(result.states_missed) +
+                   " of the episode's states (lost datagrams): its fitness would not be exact";
+  }
   if (!result.ok && !result.episode_failed) healthy_ = false;
   return result;
 }

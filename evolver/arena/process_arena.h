@@ -24,7 +24,14 @@ struct ProcessArenaOptions {
   std::string url;      // LCM URL of the arena's traffic
   std::string arena;    // channel prefix, unique on the bus
   int num_modules = 5;  // module processes (2 for the pendulum)
-  int lockstep_timeout_ms = 2000;
+  // 0 (the default): exact lockstep. The sim waits for every command and each module for every
+  // hormone packet, and a lockstep episode whose fitness monitor missed a state fails; an
+  // episode without progress for `stall_timeout` (a lost datagram) fails. The result is then
+  // the fused arena's to the bit, or an error: never a result changed by a loss or a stall.
+  // Above 0: the sim goes on after this long without a module's command, modules after a
+  // quarter of it without a neighbour's packet (docs/protocol.md), and the result can differ.
+  int lockstep_timeout_ms = 0;
+  std::chrono::seconds stall_timeout{10};
   bool verbose = false;  // show the children's output
   std::string log_file;  // when set, `logger` records everything into it
   // "ahhs-logger" (ours, next to this program; keeps every message) or "lcm-logger" (Debian's
@@ -37,6 +44,9 @@ struct ProcessArenaOptions {
   // ahhs-sim --hardware-modules: modules whose bodies are hardware ("" = none).
   std::string hardware_modules;
 };
+
+// The modules' --hormone-timeout-ms for a sim's lockstep timeout: a quarter of it, 0 for 0.
+int HormoneTimeoutMs(int lockstep_timeout_ms);
 
 class ProcessArena {
  public:

@@ -220,7 +220,8 @@ local function try_step()
   local got = st.packets[t - 1] or {}
   local all_in = true
   if t > 0 then for _, n in ipairs(st.neighbours) do all_in = all_in and got[n] ~= nil end end
-  if not st.realtime and not all_in and now() < st.sensors_at + opt.hormone_timeout then
+  if not st.realtime and not all_in
+      and (opt.hormone_timeout == 0 or now() < st.sensors_at + opt.hormone_timeout) then
     return false
   end
   -- 1. Received hormone, increasing sender id (real time: every packet not yet added).
@@ -263,7 +264,7 @@ publish_status(ahhs.module_status_t.IDLE)
 while running and not (stop_at and now() >= stop_at) do
   -- Wait at most until the hormone timeout of a tick whose sensors are in.
   local wait = 0.1
-  if st.sensors and st.sensors.tick == st.next_tick then
+  if st.sensors and st.sensors.tick == st.next_tick and opt.hormone_timeout > 0 then
     wait = math.max(0, math.min(wait, st.sensors_at + opt.hormone_timeout - now()))
   end
   pcall(lc.handle_timeout, lc, math.floor(wait * 1000)) -- a signal interrupts the wait

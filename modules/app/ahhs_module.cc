@@ -25,8 +25,8 @@ int main(int argc, char** argv) {
   app.add_option("--arena", options.arena, "arena name: channel prefix")->capture_default_str();
   app.add_option("--hormone-timeout-ms", timeout_ms,
                  "longest wait for neighbours' hormone packets (keep it well below the sim's "
-                 "lockstep timeout)")
-      ->check(CLI::Range(1, 600000))
+                 "lockstep timeout; 0: wait for every packet, exact lockstep)")
+      ->check(CLI::Range(0, 600000))
       ->capture_default_str();
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
   options.hormone_timeout = std::chrono::milliseconds(timeout_ms);

@@ -159,7 +159,9 @@ bool ModuleNode::TryStep(Clock::time_point now) {
   if (t > 0)
     for (int n : neighbours_) have += packets_.count({t - 1, n}) ? 1 : 0;
   const bool all_in = t == 0 || have == static_cast<int>(neighbours_.size());
-  if (!realtime_ && !all_in && now < sensors_arrival_ + options_.hormone_timeout) return false;
+  const bool exact = options_.hormone_timeout.count() == 0;
+  if (!realtime_ && !all_in && (exact || now < sensors_arrival_ + options_.hormone_timeout))
+    return false;
 
   // 1. Received hormone, in increasing sender id.
   if (realtime_) {  // every packet not yet added, oldest tick first
@@ -222,7 +224,7 @@ bool ModuleNode::TryStep(Clock::time_point now) {
 
 void ModuleNode::Poll(std::chrono::microseconds max_wait) {
   auto wait = max_wait;
-  if (sensors_ && sensors_->tick == next_tick_) {
+  if (sensors_ && sensors_->tick == next_tick_ && options_.hormone_timeout.count() > 0) {
     const auto left = std::chrono::duration_cast<std::chrono::microseconds>(
         sensors_arrival_ + options_.hormone_timeout - Clock::now());
     wait = std::clamp(left, std::chrono::microseconds(0), max_wait);

@@ -32,6 +32,7 @@ struct ModuleNodeOptions {
   // Wait for the neighbours' packets of t-1. Must be well below the sim's lockstep timeout
   // (default 2000 ms): a module that waits as long as the sim does answers too late after a
   // lost packet, the sim moves on, and the module keeps chasing ticks it cannot complete.
+  // 0: exact lockstep, it waits for every packet (with a sim that waits for every command).
   std::chrono::milliseconds hormone_timeout{500};
   std::chrono::milliseconds heartbeat{1000};
 };

@@ -116,8 +116,9 @@ int main(int argc, char** argv) {
   app.add_option("--arena", node_options.arena, "arena name: channel prefix (bus mode)")
       ->capture_default_str();
   app.add_option("--lockstep-timeout-ms", timeout_ms,
-                 "bus mode: longest wait for a module's command")
-      ->check(CLI::Range(1, 600000))
+                 "bus mode: longest wait for a module's command (0: wait for every command, "
+                 "exact lockstep)")
+      ->check(CLI::Range(0, 600000))
       ->capture_default_str();
   app.add_option("--min-tick-us", min_tick_us,
                  "bus mode, lockstep: at least this many microseconds of wall time per tick")

@@ -171,9 +171,9 @@ void SimNode::Resume() {
   // The paused tick's sensors are already out; restart its clock from now.
   phase_ = Phase::kRunning;
   tick_deadline_ =
-      Clock::now() + (realtime_ ? std::chrono::duration_cast<Clock::duration>(
-                                      std::chrono::duration<double>(scenario_->control_period()))
-                                : Clock::duration(options_.lockstep_timeout));
+      realtime_ ? Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                     std::chrono::duration<double>(scenario_->control_period()))
+                : LockstepDeadline(Clock::now());
   PublishClock(sim_clock_t::RUNNING);
 }
 
@@ -235,6 +235,11 @@ void SimNode::Poll(std::chrono::microseconds max_wait) {
   Process();
 }
 
+SimNode::Clock::time_point SimNode::LockstepDeadline(Clock::time_point now) const {
+  if (options_.lockstep_timeout.count() == 0) return Clock::time_point::max();  // exact
+  return now + options_.lockstep_timeout;
+}
+
 void SimNode::Process() {
   if (ReadyToAdvance(Clock::now())) Advance();
 }
@@ -282,10 +287,9 @@ void SimNode::PublishTickStart() {
     const auto period = std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(scenario_->control_period()));
     // Keep pace with the wall clock; after a stall, do not race to catch up.
-    tick_deadline_ = std::max(tick_deadline_ + period, now);
-    if (scenario_->tick() == 0) tick_deadline_ = now + period;
+    tick_deadline_ = scenario_->tick() == 0 ? now + period : std::max(tick_deadline_ + period, now);
   } else {
-    tick_deadline_ = now + options_.lockstep_timeout;
+    tick_deadline_ = LockstepDeadline(now);
   }
   for (int c = 0; c < scenario_->num_compartments(); ++c) {
     if (options_.hardware_modules.count(c)) continue;  // its firmware publishes its readings

@@ -24,7 +24,8 @@ namespace ahhs::sim {
 struct SimNodeOptions {
   std::string arena = bus::kDefaultArena;
   // Lockstep: how long the sim waits for every module's HINGE(t) before it goes on with the
-  // last command of the missing ones (counted in stats().missed_commands).
+  // last command of the missing ones (counted in stats().missed_commands). 0: exact lockstep,
+  // it waits for every command (a lost one stalls the episode; its launcher aborts it).
   std::chrono::milliseconds lockstep_timeout{2000};
   // SIM/STATE messages per simulated second; 0: once per tick in lockstep (all the fitness
   // monitor uses) and 40 in real time (smooth for a viewer at wall-clock pace).
@@ -89,6 +90,7 @@ class SimNode {
   void Start();
   void Resume();
   bool ReadyToAdvance(Clock::time_point now) const;
+  Clock::time_point LockstepDeadline(Clock::time_point now) const;  // max() when exact
   void Advance();
   void PublishTickStart();
   void PublishClock(std::int8_t run_state);

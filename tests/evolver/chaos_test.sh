@@ -79,6 +79,11 @@ dropped=$(nft list chain inet chaos in | grep -o "packets [0-9]*" | grep -o "[0-
 dump $tmp/whole >$tmp/whole.dump
 dump $tmp/chaos >$tmp/chaos.dump
 [[ $(wc -l <$tmp/whole.dump) == $((8 * 14)) ]] || fail "the uninterrupted run is incomplete"
-cmp -s $tmp/whole.dump $tmp/chaos.dump || fail "the chaos run differs from the uninterrupted run"
+if ! cmp -s $tmp/whole.dump $tmp/chaos.dump; then
+  echo "generation|idx|genome|seed|elite|fitness|cost: < uninterrupted, > chaos (first differences)"
+  diff $tmp/whole.dump $tmp/chaos.dump | head -12
+  grep -E "error|failed|re-issued" $tmp/chaos.out | head -20
+  fail "the chaos run differs from the uninterrupted run"
+fi
 echo "identical: $kills kill -9 ($misses scheduled victims not running), $resumes resumes, $dropped farm datagrams dropped, $(grep -c 're-issued' $tmp/chaos.out) re-issues; ${chaos_s} s"
 echo PASS

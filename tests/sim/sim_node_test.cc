@@ -7,6 +7,7 @@
 #include <ahhs/topology_t.hpp>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "bus/lcm_bus.h"
@@ -41,27 +42,59 @@ struct FakeModules {
   bus::Bus& bus;
   bus::ArenaChannels ch;
   std::int64_t episode;
-  std::set<int> silent;  // modules that never answer
+  std::set<int> silent;                  // modules that do not answer (until Release)
+  std::map<int, module_sensors_t> held;  // the last SENSORS a silent module got
   int sensors_seen = 0;
   bus::Subscription subscription;
   FakeModules(bus::Bus& b, std::int64_t ep) : bus(b), episode(ep) {
     subscription = bus::SubscribeTyped<module_sensors_t>(
         bus, "AHHS/MODULE[0-9]+/SENSORS", [this](const std::string&, const module_sensors_t& m) {
           ++sensors_seen;
-          if (silent.count(m.module)) return;
-          hinge_command_t h{};
-          h.episode = m.episode;
-          h.tick = m.tick;
-          h.module = m.module;
-          h.num_actuators = 2;
-          h.values = {0, 0};
-          h.present = {m.module == 0, m.module == 1};
-          h.values[static_cast<std::size_t>(m.module)] = Policy(m.module, m.values.data());
-          h.target_angle = std::nan("");
-          bus::PublishTyped(bus, ch.Hinge(m.module), h);
+          if (silent.count(m.module)) {
+            held[m.module] = m;
+            return;
+          }
+          Answer(m);
         });
   }
+  // A silent module answers what it holds, late, and from then on every tick.
+  void Release(int module) {
+    silent.erase(module);
+    if (held.count(module)) Answer(held[module]);
+  }
+  void Answer(const module_sensors_t& m) {
+    hinge_command_t h{};
+    h.episode = m.episode;
+    h.tick = m.tick;
+    h.module = m.module;
+    h.num_actuators = 2;
+    h.values = {0, 0};
+    h.present = {m.module == 0, m.module == 1};
+    h.values[static_cast<std::size_t>(m.module)] = Policy(m.module, m.values.data());
+    h.target_angle = std::nan("");
+    bus::PublishTyped(bus, ch.Hinge(m.module), h);
+  }
 };
+
+// The fitness of Policy run in-process for `ticks` from `seed`.
+double InProcessFitness(std::uint64_t seed, int ticks) {
+  sim::ScenarioConfig config;
+  config.kind = sim::ScenarioKind::kPendulum;
+  config.duration = ticks * kPeriod;
+  sim::PendulumScenario direct(config);
+  direct.Reset(seed);
+  double s[10], a[2];
+  while (true) {
+    for (int c = 0; c < 2; ++c) {
+      direct.ReadSensors(c, s);
+      a[0] = a[1] = 0;
+      a[c] = Policy(c, s);
+      direct.SetActuators(c, a);
+    }
+    if (direct.Step() != sim::StepStatus::kRunning) break;
+  }
+  return direct.Fitness();
+}
 
 void RunToEnd(sim::SimNode& node) {
   for (int k = 0; k < 100000 && node.phase() == sim::SimNode::Phase::kRunning; ++k) node.Poll(10ms);
@@ -119,23 +152,7 @@ TEST_CASE("lockstep over the bus equals the same policy run in-process, bit for 
   CHECK(node.stats().missed_commands == 0);
   CHECK(node.stats().ticks == 400);
 
-  // The same policy, in-process.
-  sim::ScenarioConfig config;
-  config.kind = sim::ScenarioKind::kPendulum;
-  config.duration = 400 * kPeriod;
-  sim::PendulumScenario direct(config);
-  direct.Reset(99);
-  double s[10], a[2];
-  while (true) {
-    for (int c = 0; c < 2; ++c) {
-      direct.ReadSensors(c, s);
-      a[0] = a[1] = 0;
-      a[c] = Policy(c, s);
-      direct.SetActuators(c, a);
-    }
-    if (direct.Step() != sim::StepStatus::kRunning) break;
-  }
-  CHECK(node.scenario()->Fitness() == direct.Fitness());
+  CHECK(node.scenario()->Fitness() == InProcessFitness(99, 400));  // the same policy
   CHECK(node.scenario()->Fitness() != 0.0);
   bus.Handle(0us);
   // Lockstep: one state per tick boundary (what the fitness monitor uses), plus the one at reset
@@ -198,6 +215,36 @@ TEST_CASE("bad commands are counted and dropped, a silent module times out", "[s
   const auto& p = static_cast<const sim::PendulumScenario&>(*node.scenario());
   CHECK(p.state().x == direct.state().x);
   CHECK(p.Fitness() == direct.Fitness());
+}
+
+TEST_CASE("exact lockstep waits for a stalled module as long as it takes: the run is unchanged",
+          "[sim][node]") {
+  bus::LcmBus bus("memq://");
+  sim::SimNodeOptions options;
+  options.lockstep_timeout = 0ms;  // exact
+  sim::SimNode node(&bus, options);
+  FakeModules modules(bus, 5);
+  auto reset = Control(sim_control_t::RESET, 5);
+  reset.seed = 99;
+  reset.duration = 60 * kPeriod;
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", reset);
+  node.Poll(1ms);
+  bus::PublishTyped(bus, "AHHS/SIM/CONTROL", Control(sim_control_t::START, 5));
+  for (int k = 0; k < 10; ++k) node.Poll(1ms);  // some ticks with both modules
+  modules.silent = {1};                         // module 1 stops answering
+  for (int k = 0; k < 3; ++k) node.Poll(1ms);
+  const auto stalled_at = node.scenario()->tick();
+  REQUIRE(stalled_at > 0);
+  for (int k = 0; k < 30; ++k) node.Poll(10ms);  // 300 ms: 60 times a 5 ms timeout
+  CHECK(node.scenario()->tick() == stalled_at);
+  CHECK(node.phase() == sim::SimNode::Phase::kRunning);
+  CHECK(node.stats().missed_commands == 0);
+  modules.Release(1);
+  RunToEnd(node);
+  REQUIRE(node.phase() == sim::SimNode::Phase::kFinished);
+  CHECK(node.stats().missed_commands == 0);
+  CHECK(node.stats().late_commands == 0);
+  CHECK(node.scenario()->Fitness() == InProcessFitness(99, 60));
 }
 
 TEST_CASE("STEP advances exactly N ticks, PAUSE holds, STOP ends", "[sim][node]") {

@@ -37,6 +37,13 @@ _ahhs_cleanup() {
   rm -rf "$tmp"
 }
 
+# dump_run RUN_DIR: every individual of a run, a line each: genome, seeds, elite, fitness and cost
+# to the last bit; what must not depend on how the run was run (layout, faults, resumes).
+dump_run() {
+  sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, eval_seed, elite,
+    printf('%!.17g', fitness), printf('%!.17g', cost) FROM individuals ORDER BY generation, idx"
+}
+
 # wait_for_file PATH: up to 4 s for PATH to appear.
 wait_for_file() {
   for _ in $(seq 200); do [[ -e "$1" ]] && return 0; sleep 0.02; done

@@ -15,10 +15,6 @@ port=7764
 url="udpm://239.255.42.64:$port?ttl=0&recv_buf_size=4194304"
 cfg=(--scenario gait --hormones 3 --rules 6 --population 8 --generations 14 --duration 3 --seed 33
      --lcm-url "$url" --arena-kind processes --workers 2)
-dump() {
-  sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, eval_seed, elite,
-    printf('%!.17g', fitness), printf('%!.17g', cost) FROM individuals ORDER BY generation, idx"
-}
 
 start=$(date +%s.%N)
 "$E" "${cfg[@]}" --out $tmp/whole >$tmp/whole.out 2>&1 || { cat $tmp/whole.out; fail "the uninterrupted run"; }
@@ -76,8 +72,8 @@ done
 kill -0 $evolver 2>/dev/null && { wait $evolver || fail "the chaos run did not finish: $(tail -5 $tmp/chaos.out)"; }
 chaos_s=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
 dropped=$(nft list chain inet chaos in | grep -o "packets [0-9]*" | grep -o "[0-9]*")
-dump $tmp/whole >$tmp/whole.dump
-dump $tmp/chaos >$tmp/chaos.dump
+dump_run $tmp/whole >$tmp/whole.dump
+dump_run $tmp/chaos >$tmp/chaos.dump
 [[ $(wc -l <$tmp/whole.dump) == $((8 * 14)) ]] || fail "the uninterrupted run is incomplete"
 if ! cmp -s $tmp/whole.dump $tmp/chaos.dump; then
   echo "generation|idx|genome|seed|elite|fitness|cost: < uninterrupted, > chaos (first differences)"

@@ -17,13 +17,8 @@ ahhs_netns "$0" "$@"
 url="udpm://239.255.42.60:7751?ttl=0&recv_buf_size=4194304"
 ahhs_scratch 'ahhs-evolve|ahhs-worker|bus_peer|farm_peer'
 E="$bin/ahhs-evolve"
-# Everything that must not depend on the process layout: genomes, seeds, fitness, cost.
-dump() {
-  sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, eval_seed, elite,
-    printf('%!.17g', fitness), printf('%!.17g', cost) FROM individuals ORDER BY generation, idx"
-}
 same_run() {  # same_run DIR_A DIR_B WHAT
-  dump "$1" >$tmp/a.dump; dump "$2" >$tmp/b.dump
+  dump_run "$1" >$tmp/a.dump; dump_run "$2" >$tmp/b.dump
   [[ -s $tmp/a.dump ]] || fail "$3: empty run"
   cmp -s $tmp/a.dump $tmp/b.dump || { diff $tmp/a.dump $tmp/b.dump | head -5; fail "$3: runs differ"; }
   echo "$3: identical ($(wc -l <$tmp/a.dump) individuals)"

@@ -17,10 +17,6 @@ sw=$lan_switch
 hosts=("${lan_hosts[@]}")
 url="udpm://239.255.42.70:7761?ttl=1&recv_buf_size=4194304"
 args="--scenario gait --hormones 3 --rules 6 --population 8 --generations 6 --duration 3 --seed 21 --lcm-url $url"
-dump() {
-  sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, eval_seed, elite,
-    printf('%!.17g', fitness), printf('%!.17g', cost) FROM individuals ORDER BY generation, idx"
-}
 
 echo "== one host: the evolver and two local workers on host 0"
 in_host ${hosts[0]} "$bin/ahhs-evolve" $args --out $tmp/one --workers 2 >$tmp/one.out 2>&1 ||
@@ -31,8 +27,8 @@ in_host ${hosts[1]} "$bin/ahhs-worker" --lcm-url "$url" --any-run --id host1 >$t
 in_host ${hosts[2]} "$bin/ahhs-worker" --lcm-url "$url" --any-run --id host2 >$tmp/w2.out 2>&1 &
 in_host ${hosts[0]} timeout 300 "$bin/ahhs-evolve" $args --out $tmp/lan --workers 0 --worker-wait 20 >$tmp/lan.out 2>&1 ||
   { cat $tmp/lan.out; fail "LAN run"; }
-dump $tmp/one >$tmp/one.dump
-dump $tmp/lan >$tmp/lan.dump
+dump_run $tmp/one >$tmp/one.dump
+dump_run $tmp/lan >$tmp/lan.dump
 [[ -s $tmp/one.dump ]] || fail "empty run"
 cmp -s $tmp/one.dump $tmp/lan.dump || fail "the LAN run differs from the one-host run"
 workers=$(sqlite3 $tmp/lan/run.sqlite "SELECT group_concat(DISTINCT worker) FROM (SELECT worker FROM individuals ORDER BY worker)")
@@ -46,7 +42,7 @@ in_host ${hosts[1]} nft add table inet t &&
   skip "nftables unavailable for the lossy part (the clean LAN run passed)"
 in_host ${hosts[0]} timeout 300 "$bin/ahhs-evolve" $args --out $tmp/lossy --workers 0 --worker-wait 20 --job-deadline 10 >$tmp/lossy.out 2>&1 ||
   { cat $tmp/lossy.out; fail "lossy LAN run"; }
-dump $tmp/lossy >$tmp/lossy.dump
+dump_run $tmp/lossy >$tmp/lossy.dump
 cmp -s $tmp/one.dump $tmp/lossy.dump || fail "the lossy LAN run differs from the one-host run"
 echo "identical; $(grep -c 're-issued' $tmp/lossy.out) re-issues reported"
 
@@ -68,7 +64,7 @@ start=$(date +%s.%N)
 in_host ${hosts[0]} timeout 300 "$bin/ahhs-evolve" $big --out $tmp/big-lossy --workers 0 --worker-wait 20 >$tmp/big-lossy.out 2>&1 ||
   { cat $tmp/big-lossy.out; fail "large-genome run with loss"; }
 lossy_s=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
-cmp -s <(dump $tmp/big-clean) <(dump $tmp/big-lossy) || fail "loss changed the results"
+cmp -s <(dump_run $tmp/big-clean) <(dump_run $tmp/big-lossy) || fail "loss changed the results"
 counters=($(in_host $sw nft list chain bridge t tohost1 | grep -o "packets [0-9]*" | grep -o "[0-9]*"))
 fragments=${counters[0]:-0} large=${counters[1]:-0} lost=${counters[2]:-0}
 [[ $fragments -eq 0 ]] || fail "$fragments IP fragments reached the bridge: a farm message is over one datagram"

@@ -13,10 +13,6 @@ E="$bin/ahhs-evolve"
 url="udpm://239.255.42.65:7766?ttl=0&recv_buf_size=4194304"
 cfg=(--scenario gait --hormones 3 --rules 6 --population 8 --generations 12 --duration 3 --seed 34
      --lcm-url "$url" --arena-kind processes --workers 2)
-dump() {
-  sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, eval_seed, elite,
-    printf('%!.17g', fitness), printf('%!.17g', cost) FROM individuals ORDER BY generation, idx"
-}
 
 "$E" "${cfg[@]}" --out $tmp/whole >$tmp/whole.out 2>&1 || { cat $tmp/whole.out; fail "the undisturbed run"; }
 "$E" "${cfg[@]}" --out $tmp/stalled >$tmp/stalled.out 2>&1 &
@@ -33,8 +29,8 @@ for plan in "ahhs-module 2.5" "ahhs-sim 2.5" "ahhs-fitness 2.5" "ahhs-module 11"
 done
 wait $evolver || { tail -5 $tmp/stalled.out; fail "the stalled run"; }
 [[ $stalls == 4 ]] || fail "the run ended before the 4 stalls ($stalls): make it longer"
-dump $tmp/whole >$tmp/whole.dump
-dump $tmp/stalled >$tmp/stalled.dump
+dump_run $tmp/whole >$tmp/whole.dump
+dump_run $tmp/stalled >$tmp/stalled.dump
 [[ $(wc -l <$tmp/whole.dump) == $((8 * 12)) ]] || fail "the undisturbed run is incomplete"
 if ! cmp -s $tmp/whole.dump $tmp/stalled.dump; then
   diff $tmp/whole.dump $tmp/stalled.dump | head -8

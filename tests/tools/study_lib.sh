@@ -1,17 +1,13 @@
 # Shared by the ahhs-study tests (study_test.sh, study_slurm_test.sh): the tiny plan they run and
-# the bit-for-bit comparison of two studies' runs. Needs $src, $tmp and fail (tests/lib.sh).
+# the bit-for-bit comparison of two studies' runs. Needs $src, $tmp, fail and dump_run
+# (tests/lib.sh).
 
-# dump RUN_DIR: everything of a run that must not depend on how it was run.
-dump() {
-  sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, eval_seed, elite,
-    printf('%!.17g', fitness), printf('%!.17g', cost) FROM individuals ORDER BY generation, idx"
-}
 
 runs="pend2/seed-1 pend2/seed-2 pend1/seed-1 pend1/seed-2"
 # same_study DIR_A DIR_B WHAT: every run of $runs identical, best.json too (but its run id).
 same_study() {
   for r in $runs; do
-    dump "$1/$r" >$tmp/a.dump; dump "$2/$r" >$tmp/b.dump
+    dump_run "$1/$r" >$tmp/a.dump; dump_run "$2/$r" >$tmp/b.dump
     [[ -s $tmp/a.dump ]] || fail "$3: $r is empty"
     cmp -s $tmp/a.dump $tmp/b.dump || fail "$3: $r differs"
     # best.json: the same genome and metadata but the run id (host, process, time).

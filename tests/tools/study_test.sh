@@ -107,7 +107,7 @@ rm -r $tmp/E/pend2/seed-2
 grep -q "3 complete runs taken" $tmp/C.out && grep -q "3 of 4 runs complete, 1 to run" $tmp/C.out ||
   fail "from export: $(cat $tmp/C.out)"
 [[ $(grep -c started $tmp/C.out) == 1 ]] && grep -q "started pend2/seed-2" $tmp/C.out || fail "from export ran: $(cat $tmp/C.out)"
-dump $tmp/A/pend2/seed-2 >$tmp/a.dump; dump $tmp/C/pend2/seed-2 >$tmp/c.dump
+dump_run $tmp/A/pend2/seed-2 >$tmp/a.dump; dump_run $tmp/C/pend2/seed-2 >$tmp/c.dump
 cmp -s $tmp/a.dump $tmp/c.dump || fail "the run made beside an export differs"
 cmp -s $tmp/A/pend1/seed-1/best.json $tmp/C/pend1/seed-1/best.json || fail "taken run's best.json is not the export's"
 # The exported best genome replays to its stored fitness without the run directory.

@@ -14,7 +14,6 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
-#include <regex>
 #include <thread>
 
 #include "bus/cli.h"
@@ -39,6 +38,20 @@ std::string HostName() {
   return buf;
 }
 
+// The port of a udpm://GROUP:PORT[?...] URL, or -1.
+int UdpmPort(const std::string& url) {
+  const std::string scheme = "udpm://";
+  if (url.rfind(scheme, 0) != 0) return -1;
+  const auto colon = url.find(':', scheme.size());
+  if (colon == std::string::npos) return -1;
+  int port = 0, digits = 0;
+  for (auto i = colon + 1; i < url.size() && url[i] != '?' && url[i] != '/'; ++i, ++digits) {
+    if (url[i] < '0' || url[i] > '9' || digits == 5) return -1;
+    port = port * 10 + (url[i] - '0');
+  }
+  return digits > 0 ? port : -1;
+}
+
 // Every process on a multicast port receives every datagram sent to it, and in a lockstep arena
 // that per-datagram cost is most of the time: arenas sharing a port (or sharing it with the
 // farm) slow each other down several times. So each worker's arena gets a port of its own,
@@ -46,10 +59,7 @@ std::string HostName() {
 // never the farm's port, whose datagrams a lossy link or a filter may drop.
 std::string PrivateArenaUrl(const std::string& farm_url) {
   int port = 7668 + getpid() % 4000;
-  static const std::regex kUdpmPort(R"(^udpm://[^:/?]*:([0-9]{1,5})([?/]|$))");
-  std::smatch m;
-  if (std::regex_search(farm_url, m, kUdpmPort) && std::stoi(m[1].str()) == port)
-    port = port == 11667 ? 7668 : port + 1;
+  if (UdpmPort(farm_url) == port) port = port == 11667 ? 7668 : port + 1;
   return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
 }
 

@@ -72,8 +72,8 @@ int main(int argc, char** argv) {
   app.add_option("--lockstep-timeout-ms", lockstep_timeout_ms,
                  "longest wait of the sim for a module's command (modules wait a quarter of it for "
                  "their neighbours' packets, so that after a loss they still answer in time); 0: "
-                 "exact lockstep, nobody goes on without a message, and an episode that stalls "
-                 "10 s fails, as in evolution)")
+                 "exact lockstep, nobody goes on without a message and an episode that stalls "
+                 "10 s fails, as in evolution")
       ->check(CLI::Range(0, 600000))
       ->capture_default_str();
   std::string external;

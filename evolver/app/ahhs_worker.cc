@@ -58,8 +58,9 @@ int UdpmPort(const std::string& url) {
 // 7668 + pid % 4000 (a collision costs speed, never correctness: arenas have unique names), but
 // never the farm's port, whose datagrams a lossy link or a filter may drop.
 std::string PrivateArenaUrl(const std::string& farm_url) {
-  int port = 7668 + getpid() % 4000;
-  if (UdpmPort(farm_url) == port) port = port == 11667 ? 7668 : port + 1;
+  int offset = getpid() % 4000;
+  if (UdpmPort(farm_url) == 7668 + offset) offset = (offset + 1) % 4000;
+  const int port = 7668 + offset;
   return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
 }
 

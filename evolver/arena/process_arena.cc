@@ -16,6 +16,13 @@
 
 namespace ahhs::arena {
 
+namespace {
+// The modules' --hormone-timeout-ms for a sim's lockstep timeout: a quarter of it, 0 for 0.
+int HormoneTimeoutMs(int lockstep_timeout_ms) {
+  return lockstep_timeout_ms == 0 ? 0 : std::max(1, lockstep_timeout_ms / 4);
+}
+}  // namespace
+
 ProcessArena::ProcessArena(ProcessArenaOptions options) : options_(std::move(options)) {
   const std::string dir = options_.bin_dir.empty() ? ExecutableDir() : options_.bin_dir;
   const std::string& url = options_.url;
@@ -76,10 +83,6 @@ ProcessArena::ProcessArena(ProcessArenaOptions options) : options_(std::move(opt
 }
 
 ProcessArena::~ProcessArena() = default;
-
-int HormoneTimeoutMs(int lockstep_timeout_ms) {
-  return lockstep_timeout_ms == 0 ? 0 : std::max(1, lockstep_timeout_ms / 4);
-}
 
 bool ProcessArena::ChildrenAlive(std::string* why) {
   const auto ended = children_.Reap();

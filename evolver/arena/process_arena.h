@@ -45,9 +45,6 @@ struct ProcessArenaOptions {
   std::string hardware_modules;
 };
 
-// The modules' --hormone-timeout-ms for a sim's lockstep timeout: a quarter of it, 0 for 0.
-int HormoneTimeoutMs(int lockstep_timeout_ms);
-
 class ProcessArena {
  public:
   // Starts the children. Throws std::runtime_error when a program cannot be started.

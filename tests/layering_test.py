@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The layering of the code (docs/development.md, "Map of the code"), checked on every include.
 
-1. Top-level folders form a stack: lcmtypes < bus < modules < sim < evolver < tools. A file
+1. Top-level folders form a stack: base < lcmtypes < bus < modules < sim < evolver < tools. A file
    includes only from its own folder or lower ones (tests include anything).
 2. Roles within a component: a pure core (modules/core, sim/core, evolver/ga, evolver/store,
    evolver/evolve) includes no bus, no LCM, no node and no app; a node (modules/node, sim/node,
@@ -14,7 +14,7 @@ import re
 import sys
 
 root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".")
-stack = ["lcmtypes", "bus", "modules", "sim", "evolver", "tools"]
+stack = ["base", "lcmtypes", "bus", "modules", "sim", "evolver", "tools"]
 cores = {"modules/core", "sim/core", "evolver/ga", "evolver/store", "evolver/evolve"}
 nodes = {"modules/node", "sim/node", "evolver/fitness", "evolver/farm", "evolver/arena"}
 include = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')

@@ -8,6 +8,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 
+#include "base/temp_files.h"
 #include "bus/channels.h"
 #include "bus/codec.h"
 #include "bus/wire_text.h"
@@ -26,7 +27,7 @@ namespace {
 // An LCM log written to a temporary name and moved into place when complete.
 class LogWriter {
  public:
-  explicit LogWriter(const std::string& path) : path_(path), tmp_(path + ".tmp") {
+  explicit LogWriter(const std::string& path) : path_(path), tmp_(base::CreateTempBeside(path)) {
     log_ = std::make_unique<lcm::LogFile>(tmp_, "w");
     if (!log_->good()) throw std::runtime_error("cannot write " + path);
   }

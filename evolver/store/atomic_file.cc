@@ -6,12 +6,16 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "base/temp_files.h"
+
 namespace ahhs::evolver {
 
 namespace fs = std::filesystem;
 
 AtomicTextFile::AtomicTextFile(std::string path)
-    : path_(std::move(path)), out_(path_ + ".tmp", std::ios::binary | std::ios::trunc) {
+    : path_(std::move(path)),
+      tmp_(base::CreateTempBeside(path_)),
+      out_(tmp_, std::ios::binary | std::ios::trunc) {
   if (!out_) throw std::runtime_error("cannot write " + path_ + ": " + std::strerror(errno));
 }
 
@@ -19,7 +23,7 @@ AtomicTextFile::~AtomicTextFile() {
   if (done_) return;
   out_.close();
   std::error_code ignored;
-  fs::remove(path_ + ".tmp", ignored);
+  fs::remove(tmp_, ignored);
 }
 
 void AtomicTextFile::Commit() {
@@ -28,12 +32,12 @@ void AtomicTextFile::Commit() {
   if (!out_) {
     const std::string why = std::strerror(errno);
     std::error_code ignored;
-    fs::remove(path_ + ".tmp", ignored);
+    fs::remove(tmp_, ignored);
     done_ = true;
     throw std::runtime_error("cannot write " + path_ + ": " + why);
   }
   std::error_code ec;
-  fs::rename(path_ + ".tmp", path_, ec);
+  fs::rename(tmp_, path_, ec);
   if (ec) throw std::runtime_error("cannot write " + path_ + ": " + ec.message());
   done_ = true;
 }

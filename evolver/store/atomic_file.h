@@ -1,4 +1,5 @@
-// Files that appear whole or not at all: written under a temporary name (PATH.tmp) and renamed
+// Files that appear whole or not at all: written under a new temporary name (PATH.tmp-XXXXXX,
+// base/temp_files.h: never an existing file or a planted symlink) and renamed
 // into place, so a reader sees the old file or the new one and a killed writer leaves no
 // half-written file (run exports, study files, replay outputs).
 #pragma once
@@ -21,7 +22,7 @@ class AtomicTextFile {
   void Commit();
 
  private:
-  std::string path_;
+  std::string path_, tmp_;
   std::ofstream out_;
   bool done_ = false;
 };

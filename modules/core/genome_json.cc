@@ -7,6 +7,9 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
+
+#include "base/temp_files.h"
 
 namespace ahhs::modules {
 namespace {
@@ -259,7 +262,12 @@ void SaveGenomeFile(const std::string& path, const Genome& genome, const json& m
   const std::string error = CheckGenome(genome);
   if (!error.empty())
     throw GenomeFileError(path + ": refusing to write an invalid genome: " + error);
-  const std::string tmp = path + ".tmp";
+  std::string tmp;
+  try {
+    tmp = base::CreateTempBeside(path);
+  } catch (const std::runtime_error& e) {
+    throw GenomeFileError(e.what());
+  }
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw GenomeFileError(path + ": cannot write " + tmp + ": " + std::strerror(errno));

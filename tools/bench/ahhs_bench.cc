@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "base/temp_files.h"
 #include "bus/cli.h"
 #include "evolver/arena/children.h"
 #include "evolver/arena/direct_arena.h"
@@ -269,11 +270,10 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   }
   processes.reset();
   // Multi-process, cold: one whole ahhs-launch run (process start, handshake, episode, exit).
-  char path[] = "/tmp/ahhs-bench-genome-XXXXXX";
-  const int fd = mkstemp(path);
-  if (fd >= 0) close(fd);
+  const ahhs::base::TempDir scratch("ahhs-bench-");
+  const std::string path = scratch.path() + "/genome.json";
   am::SaveGenomeFile(path, genome);
-  const std::string out = std::string(path) + ".out";
+  const std::string out = scratch.path() + "/launch.out";
   const std::string cmd = al::ExecutableDir() + "/ahhs-launch --scenario gait --genome " + path +
                           " --seed " + std::to_string(seed) + " --lcm-url '" + url + "' > " + out +
                           " 2>/dev/null";
@@ -284,8 +284,6 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
     while (std::getline(in, line)) last = line;
     return last.rfind("fitness: ", 0) == 0 ? std::stod(last.substr(9)) : std::nan("");
   });
-  std::remove(path);
-  std::remove(out.c_str());
   std::printf(
       "gait, 5 modules, damped, 60 s at 20 Hz, AHHS2 5 hormones x 30 rules, seed %llu, median "
       "of %d rounds\n",
@@ -329,8 +327,8 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
 // store), timed from the outside.
 void BenchEvolve(const std::string& name, const std::string& options, int generations,
                  const std::string& url, int workers) {
-  char tmpl[] = "/tmp/ahhs-bench-evolve-XXXXXX";
-  const std::string dir = mkdtemp(tmpl);
+  const ahhs::base::TempDir scratch("ahhs-bench-evolve-");
+  const std::string& dir = scratch.path();
   const std::string command =
       ahhs::arena::ExecutableDir() + "/ahhs-evolve " + options + " --generations " +
       std::to_string(generations) + " --lcm-url '" + url + "' --out " + dir + "/run" +
@@ -346,8 +344,6 @@ void BenchEvolve(const std::string& name, const std::string& options, int genera
   const int status = pipe ? pclose(pipe) : -1;
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::string rm = "rm -rf " + dir;
-  if (std::system(rm.c_str()) != 0) std::fprintf(stderr, "cannot remove %s\n", dir.c_str());
   if (status != 0) {
     std::printf("%s: ahhs-evolve failed:\n%s\n", name.c_str(), output.c_str());
     return;

@@ -18,6 +18,7 @@
 #include <iostream>
 #include <optional>
 
+#include "base/temp_files.h"
 #include "bus/cli.h"
 #include "evolver/arena/children.h"
 #include "evolver/arena/direct_arena.h"
@@ -197,20 +198,17 @@ int main(int argc, char** argv) {
   spec.episode = 1;
 
   const bool film = !video.empty() || !filmstrip.empty();
-  fs::path film_dir;
+  std::unique_ptr<ahhs::base::TempDir> film_dir;  // a private folder, removed at the end
   std::string film_log = log_file;
   if (film && log_file.empty()) {
-    film_dir = fs::temp_directory_path() / ("ahhs-replay-" + std::to_string(getpid()));
-    fs::create_directories(film_dir);
-    film_log = (film_dir / "episode.lcm").string();
-  }
-  struct RemoveDir {
-    fs::path dir;
-    ~RemoveDir() {
-      std::error_code ec;
-      if (!dir.empty()) fs::remove_all(dir, ec);
+    try {
+      film_dir = std::make_unique<ahhs::base::TempDir>("ahhs-replay-");
+    } catch (const std::exception& e) {
+      std::cerr << "ahhs-replay: " << e.what() << '\n';
+      return 1;
     }
-  } remove_film_dir{film_dir};
+    film_log = (fs::path(film_dir->path()) / "episode.lcm").string();
+  }
 
   try {
     const bool record =

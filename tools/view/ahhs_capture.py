@@ -200,6 +200,18 @@ def probe(args):
         chrome.close()
 
 
+def new_temp_beside(path, suffix):
+    """A new file beside `path` for writing under a temporary name (O_EXCL: never an existing
+    file or a planted symlink), with the permissions any new file of this process gets."""
+    folder, name = os.path.split(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=name + ".tmp-", suffix=suffix, dir=folder)
+    os.close(fd)
+    mask = os.umask(0)
+    os.umask(mask)
+    os.chmod(tmp, 0o666 & ~mask)
+    return tmp
+
+
 def video(args):
     """Frames are rendered by --jobs Chromiums at once (frame i by Chromium i % jobs) and piped
     to ffmpeg in order through small queues, so memory stays bounded for any length."""
@@ -208,7 +220,7 @@ def video(args):
     ffmpeg = shutil.which("ffmpeg")
     if not ffmpeg:
         raise CaptureError("ffmpeg not found (tools/install-deps installs it)")
-    tmp = args.out + ".tmp.mp4"
+    tmp = new_temp_beside(args.out, ".mp4")
     chromes, enc = [], None
     try:
         for _ in range(args.jobs):
@@ -283,7 +295,7 @@ def video(args):
 def filmstrip(args):
     from PIL import Image  # python3-pil
     chrome = Chromium(*args.size, timeout=args.timeout)
-    tmp = args.out + ".tmp.png"
+    tmp = new_temp_beside(args.out, ".png")
     try:
         chrome.open(args.url + "?capture=1")
         end = chrome.evaluate("ahhs.duration()")

@@ -18,6 +18,7 @@
 #include <iostream>
 #include <thread>
 
+#include "base/temp_files.h"
 #include "bus/channels.h"
 #include "bus/cli.h"
 #include "bus/fault_bus.h"
@@ -45,7 +46,8 @@ int main(int argc, char** argv) {
   std::string log_file, lcm_url = ahhs::bus::kDefaultLcmUrl, arena, run_dir;
   std::string bind = "127.0.0.1", web_root = AHHS_VIEW_WEB_ROOT, three_js = AHHS_THREE_JS;
   std::string video, filmstrip, size = "1280x720", hormones = "0,1,2";
-  int port = 8080, fps = 25, frames = 8;
+  int port = 8080, fps = 25, frames = 8, max_pages = 8;
+  std::vector<std::string> allow_hosts;
   double rate = 30, from = 0, to = -1, poll = 2;
   bool overwrite = false;
   app.add_option("log", log_file, "an LCM log to play (ahhs-launch --log, ahhs-replay --log)");
@@ -55,6 +57,14 @@ int main(int argc, char** argv) {
   app.add_option("--bind", bind,
                  "address to serve on (default 127.0.0.1: this machine only; 0.0.0.0 only on a "
                  "trusted network, the viewer has no authentication)")
+      ->capture_default_str();
+  app.add_option("--allow-host", allow_hosts,
+                 "answer requests for this host name or address too (a trusted LAN: the name "
+                 "or IP address that pages use to reach this machine; repeatable); 127.0.0.1, "
+                 "localhost, [::1] and --bind are always allowed")
+      ->check([](const std::string& name) { return av::AccessPolicy::CheckName(name); });
+  app.add_option("--max-pages", max_pages, "pages that may watch at once")
+      ->check(CLI::Range(1, 64))
       ->capture_default_str();
   app.add_option("--port", port, "HTTP port, 0 for any free one")
       ->check(CLI::Range(0, 65535))
@@ -132,7 +142,7 @@ int main(int argc, char** argv) {
   std::unique_ptr<ahhs::bus::Bus> bus;
   std::unique_ptr<av::LiveBridge> bridge;
   std::unique_ptr<av::RunFollower> follower;
-  fs::path scratch;
+  std::unique_ptr<ahhs::base::TempDir> scratch;  // --run: where the best's episode is recorded
   std::string what;
   try {
     if (!log_file.empty()) {
@@ -148,10 +158,8 @@ int main(int argc, char** argv) {
       what = log_file + " (arena " + arena + ", " + std::to_string(recordings.size()) +
              " episode(s), " + std::to_string(frames_total) + " states)";
     } else if (!run_dir.empty()) {
-      std::error_code ec;
-      scratch = fs::temp_directory_path() / ("ahhs-view-" + std::to_string(getpid()));
-      fs::create_directories(scratch, ec);
-      follower = std::make_unique<av::RunFollower>(run_dir, scratch.string());
+      scratch = std::make_unique<ahhs::base::TempDir>("ahhs-view-");
+      follower = std::make_unique<av::RunFollower>(run_dir, scratch->path());
       hello["waiting"] = follower->waiting_for();
       hello["mode"] = "run";
       hello["title"] = run_dir;
@@ -167,8 +175,6 @@ int main(int argc, char** argv) {
     }
   } catch (const std::exception& e) {
     std::cerr << "ahhs-view: " << e.what() << '\n';
-    std::error_code ec;
-    if (!scratch.empty()) fs::remove_all(scratch, ec);
     return ahhs::cli::kExitFailure;
   }
   const bool capture = !video.empty() || !filmstrip.empty();
@@ -180,7 +186,17 @@ int main(int argc, char** argv) {
   std::unique_ptr<av::WebServer> server;
   try {
     server = std::make_unique<av::WebServer>(
-        av::WebServer::Options{bind, port, web_root, three_js, !capture},
+        [&] {
+          av::WebServer::Options o;
+          o.bind = bind;
+          o.port = port;
+          o.web_root = web_root;
+          o.three_js = three_js;
+          o.announce = !capture;
+          o.allow_hosts = allow_hosts;
+          o.max_pages = max_pages;
+          return o;
+        }(),
         [&]() {
           std::vector<std::string> g{hello.dump()};
           std::lock_guard<std::mutex> lock(greeting_mutex);
@@ -255,15 +271,11 @@ int main(int argc, char** argv) {
         }
       } catch (const std::exception& e) {
         std::cerr << "ahhs-view: " << e.what() << '\n';
-        std::error_code ec;
-        fs::remove_all(scratch, ec);
         return ahhs::cli::kExitFailure;
       }
       for (int i = 0; i < static_cast<int>(poll * 10) && !g_stop; ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
-    std::error_code ec;
-    fs::remove_all(scratch, ec);
   } else {
     while (!g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }

@@ -546,13 +546,20 @@ function connect() {
     if (selected !== null && mode === 'live') ws.send(JSON.stringify({type: 'select', module: selected}));
   };
   ws.onmessage = (m) => onMessage(JSON.parse(m.data));
-  ws.onclose = () => {
+  ws.onclose = (e) => {
     connected = false;
-    document.getElementById('message').textContent = 'disconnected from ahhs-view; retrying';
-    setTimeout(connect, 1000);
+    // A reason comes from the viewer when it refused this page (too many pages, a message too
+    // large): say it, and try again less often.
+    document.getElementById('message').textContent =
+        e.reason ? e.reason + '; retrying in 10 s' : 'disconnected from ahhs-view; retrying';
+    setTimeout(connect, e.reason ? 10000 : 1000);
   };
 }
 connect();
+// The viewer closes a socket that says nothing for 30 s (an idle socket is not a page).
+setInterval(() => {
+  if (socket && socket.readyState === WebSocket.OPEN) socket.send('{"type":"alive"}');
+}, 10000);
 
 // ---- the page's API (tests, ahhs-capture) ----------------------------------------------------
 function screenPosOf(module) {

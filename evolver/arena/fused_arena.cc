@@ -45,6 +45,7 @@ EpisodeResult RunFused(const EpisodeSpec& spec) {
     sim_node.Process();
     bus.Handle(std::chrono::microseconds(0));
     for (auto& n : nodes) n->Process();
+    fitness_node.Maintain();
     if (spec.realtime) bus.Handle(std::min(wait, std::chrono::microseconds(1000)));
   };
   return RunEpisode(bus, spec, pump, [](std::string*) { return true; });

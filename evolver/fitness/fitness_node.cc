@@ -1,5 +1,6 @@
 #include "evolver/fitness/fitness_node.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "bus/wire_text.h"
@@ -7,8 +8,9 @@
 
 namespace ahhs::evolver {
 
-FitnessNode::FitnessNode(bus::Bus* bus, std::string arena)
-    : bus_(bus), channels_(std::move(arena)) {
+FitnessNode::FitnessNode(bus::Bus* bus, std::string arena,
+                         std::chrono::milliseconds final_state_wait)
+    : bus_(bus), channels_(std::move(arena)), final_state_wait_(final_state_wait) {
   subscriptions_.push_back(bus::SubscribeTyped<sim_control_t>(
       *bus_, channels_.SimControl(),
       [this](const std::string&, const sim_control_t& m) { OnControl(m); }, &counters_));
@@ -35,6 +37,7 @@ void FitnessNode::OnControl(const sim_control_t& m) {
   shape_ = sim::ShapeOf(config);
   monitor_ = std::make_unique<FitnessMonitor>(config.kind, shape_.control_period, shape_.ticks);
   final_.reset();
+  finish_deadline_.reset();
   next_report_ = 1.0;
   last_tick_ = 0;
   // Acknowledge the episode: a running result at tick 0 tells the launcher the monitor is ready.
@@ -47,6 +50,10 @@ void FitnessNode::OnState(const sim_state_t& m) {
     return;
   }
   last_tick_ = m.tick;
+  if (finish_deadline_ && monitor_->complete()) {  // the final tick's state, after FINISHED
+    Finish(Message(true, fitness_t::OK, ""));
+    return;
+  }
   if (m.sim_time + 1e-9 >= next_report_) {
     bus::PublishTyped(*bus_, channels_.Fitness(), Message(false, fitness_t::OK, ""));
     next_report_ += 1.0;
@@ -54,7 +61,7 @@ void FitnessNode::OnState(const sim_state_t& m) {
 }
 
 void FitnessNode::OnClock(const sim_clock_t& m) {
-  if (!monitor_ || m.episode != episode_ || final_) return;
+  if (!monitor_ || m.episode != episode_ || final_ || finish_deadline_) return;
   if (m.run_state == sim_clock_t::FINISHED && monitor_->states_seen() == 0) {
     // Nothing was measured: fitness 0 would be a silent wrong answer.
     final_ = Message(true, fitness_t::ERROR,
@@ -62,6 +69,9 @@ void FitnessNode::OnClock(const sim_clock_t& m) {
                          std::to_string(m.tick) +
                          " ticks): a tracker must send one state per tick with the episode and "
                          "tick of SIM/CLOCK (docs/protocol.md)");
+  } else if (m.run_state == sim_clock_t::FINISHED && !monitor_->complete()) {
+    finish_deadline_ = std::chrono::steady_clock::now() + final_state_wait_;
+    return;
   } else if (m.run_state == sim_clock_t::FINISHED) {
     final_ = Message(true, fitness_t::OK, "");
   } else if (m.run_state == sim_clock_t::FAILED) {
@@ -69,8 +79,19 @@ void FitnessNode::OnClock(const sim_clock_t& m) {
   } else {
     return;
   }
+  Finish(*final_);
+}
+
+void FitnessNode::Finish(fitness_t final_message) {
+  final_ = std::move(final_message);
+  finish_deadline_.reset();
   for (int k = 0; k < 3; ++k)
     bus::PublishTyped(*bus_, channels_.Fitness(), *final_);  // see SimNode::Finish
+}
+
+void FitnessNode::Maintain() {
+  if (finish_deadline_ && !final_ && std::chrono::steady_clock::now() >= *finish_deadline_)
+    Finish(Message(true, fitness_t::OK, ""));  // without the final state: states_missed says so
 }
 
 fitness_t FitnessNode::Message(bool is_final, std::int8_t status, const std::string& text) const {
@@ -89,6 +110,14 @@ fitness_t FitnessNode::Message(bool is_final, std::int8_t status, const std::str
   return f;
 }
 
-void FitnessNode::Poll(std::chrono::microseconds max_wait) { bus_->Handle(max_wait); }
+void FitnessNode::Poll(std::chrono::microseconds max_wait) {
+  if (finish_deadline_) {  // wake for the deadline
+    const auto left = std::chrono::duration_cast<std::chrono::microseconds>(
+        *finish_deadline_ - std::chrono::steady_clock::now());
+    max_wait = std::max(std::chrono::microseconds(0), std::min(max_wait, left));
+  }
+  bus_->Handle(max_wait);
+  Maintain();
+}
 
 }  // namespace ahhs::evolver

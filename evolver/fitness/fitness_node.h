@@ -1,6 +1,9 @@
 // The fitness monitor's protocol role: learns the episode from SIM/CONTROL RESET, follows
 // SIM/STATE, and publishes FITNESS (running, about once per simulated second, and final when
-// SIM/CLOCK says the episode finished or failed).
+// SIM/CLOCK says the episode finished or failed). The final tick's state may come after
+// FINISHED (a tracker hears FINISHED, then sends the state of that tick): when it is missing at
+// FINISHED the monitor waits for it up to `final_state_wait`, then ends without it
+// (docs/protocol.md, "End").
 #pragma once
 
 #include <ahhs/fitness_t.hpp>
@@ -19,8 +22,15 @@ namespace ahhs::evolver {
 
 class FitnessNode {
  public:
-  FitnessNode(bus::Bus* bus, std::string arena = bus::kDefaultArena);
+  static constexpr std::chrono::milliseconds kFinalStateWait{1000};
+
+  FitnessNode(bus::Bus* bus, std::string arena = bus::kDefaultArena,
+              std::chrono::milliseconds final_state_wait = kFinalStateWait);
+  // Handles what arrived (waiting up to max_wait), then Maintain().
   void Poll(std::chrono::microseconds max_wait);
+  // Ends an episode whose final tick's state did not come within the wait after FINISHED.
+  // Whoever dispatches the bus without Poll() calls it.
+  void Maintain();
 
   // The final result of the current episode, once published.
   const std::optional<fitness_t>& final_result() const { return final_; }
@@ -32,6 +42,7 @@ class FitnessNode {
   void OnState(const sim_state_t& m);
   void OnClock(const sim_clock_t& m);
   fitness_t Message(bool is_final, std::int8_t status, const std::string& text) const;
+  void Finish(fitness_t final_message);
 
   bus::Bus* bus_;
   bus::ArenaChannels channels_;
@@ -43,6 +54,9 @@ class FitnessNode {
   std::optional<fitness_t> final_;
   double next_report_ = 1.0;
   std::int64_t last_tick_ = 0;
+  std::chrono::milliseconds final_state_wait_;
+  // FINISHED came before the final tick's state: wait for it until then.
+  std::optional<std::chrono::steady_clock::time_point> finish_deadline_;
   std::vector<bus::Subscription> subscriptions_;  // last: destroyed first
 };
 

@@ -1,6 +1,12 @@
-# Test helpers. Labels: unit (in-process, memq://), multiprocess (real processes over udpm:// in a
-# private network namespace), lan (network-namespace hosts joined by veth), chaos (a soak with
-# kill -9 and loss), style.
+# Test helpers. Every test has one tier label (docs/development.md, "Tests"):
+#   unit         in-process (memq://), no processes
+#   integration  processes: command lines, real processes over udpm:// in a private network
+#                namespace, network-namespace hosts joined by veth
+#   browser      headless Chromium
+#   soak         long fault schedules (kill -9, loss, stopped processes)
+#   style        formatting and layering
+# and may have descriptive ones: multiprocess (real sockets in a namespace), lan, chaos. The
+# Release pass runs every tier; the sanitizer pass runs unit and integration.
 # Tests that cannot run here (no namespaces, not root) exit 77 and CTest reports them skipped.
 
 set(AHHS_SKIP_RETURN_CODE 77)

@@ -9,15 +9,12 @@
 
 namespace ahhs::arena {
 
-namespace {
-// Linear interpolation between order statistics (numpy's default quantile).
 double Quantile(const std::vector<double>& sorted, double q) {
   const double pos = q * static_cast<double>(sorted.size() - 1);
   const auto lo = static_cast<std::size_t>(std::floor(pos));
   const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
   return sorted[lo] + (pos - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
 }
-}  // namespace
 
 std::vector<double> RobustnessScales(int n) {
   // 1 -+ spread * j / m for j = 1..m, m = ceil(n / 2): never 1 itself (that is the replay).

@@ -11,6 +11,9 @@
 
 namespace ahhs::arena {
 
+// The q-quantile of sorted values, linear between order statistics (numpy's default).
+double Quantile(const std::vector<double>& sorted, double q);
+
 // Friction scales of a robustness check with n replays, from 1 - spread to 1 + spread in
 // even steps on both sides of 1, never 1 itself.
 inline constexpr double kRobustnessSpread = 0.025;

@@ -81,6 +81,7 @@ double GaitFitness(double displacement, const GaitConstants& k) {
 
 GaitScenario::GaitScenario(const ScenarioConfig& config, GaitConstants constants)
     : k_(constants),
+      envelope_(config.envelope),
       num_modules_(config.num_modules),
       joints_(config.joints),
       step_(joints_ == Joints::kDamped ? k_.physics_step_damped : k_.physics_step_fixed) {
@@ -111,6 +112,8 @@ void GaitScenario::Reset(std::uint64_t seed) {
   // seed and commands give the same bits.
   Destroy();
   dRandSetSeed(static_cast<unsigned long>(seed));
+  draw_ = DrawEnvelope(envelope_, seed, num_modules_);
+  noise_rng_.seed(SensorNoiseSeed(seed));
   Build();
   tick_ = 0;
   error_.clear();
@@ -167,22 +170,43 @@ void GaitScenario::Build() {
   const double half_mass = k_.module_mass / 2;
   modules_.resize(static_cast<std::size_t>(num_modules_));
   auto centre_of = [&](int i) { return ((num_modules_ - 1) / 2.0 - i) * s; };
+  // The envelope's start pose: the chain turned by `heading` about z and moved by the offsets.
+  // Without them nothing is transformed (the same bits as without an envelope).
+  const bool posed = envelope_.start_heading > 0 || envelope_.start_offset > 0;
+  const double ch = std::cos(draw_.heading), sh = std::sin(draw_.heading);
+  auto place = [&](double x, double y, double z, dReal* out) {
+    out[0] = posed ? ch * x - sh * y + draw_.offset_x : x;
+    out[1] = posed ? sh * x + ch * y + draw_.offset_y : y;
+    out[2] = z;
+  };
+  std::vector<std::pair<dBodyID, double>> chain_x;  // each body's x along the unposed chain
   auto add_geom = [&](int module, dBodyID body, double x) {
     dGeomID g = dCreateBox(space_, s / 2, s, s);
     dGeomSetBody(g, body);
-    const dReal* p = dBodyGetPosition(body);
-    dGeomSetOffsetPosition(g, x - p[0], 0, 0);
+    double body_x = 0;
+    for (const auto& [b, bx] : chain_x)
+      if (b == body) body_x = bx;
+    dGeomSetOffsetPosition(g, x - body_x, 0, 0);
     MarkModule(g, module);
     return g;
   };
   auto make_body = [&](double x, double mass, double length) {
     dBodyID body = dBodyCreate(world_);
-    dBodySetPosition(body, x, 0, s / 2);
+    dReal p[3];
+    place(x, 0, s / 2, p);
+    dBodySetPosition(body, p[0], p[1], p[2]);
+    if (posed) {
+      dQuaternion q;
+      dQFromAxisAndAngle(q, 0, 0, 1, draw_.heading);
+      dBodySetQuaternion(body, q);
+    }
     dMass m;
     dMassSetBoxTotal(&m, mass, length, s, s);
     dBodySetMass(body, &m);
+    chain_x.emplace_back(body, x);
     return body;
   };
+  auto mass_of = [&](int i) { return half_mass * draw_.mass_scale[static_cast<std::size_t>(i)]; };
   const bool rigid = joints_ == Joints::kFixed;
   for (int i = 0; i < num_modules_; ++i) {
     Module& m = modules_[static_cast<std::size_t>(i)];
@@ -191,22 +215,29 @@ void GaitScenario::Build() {
       // Shares the body made with the previous module's back half (centred on the dock face).
       m.front.body = modules_[static_cast<std::size_t>(i - 1)].back.body;
     } else {
-      m.front.body = make_body(front_x, half_mass, s / 2);
+      m.front.body = make_body(front_x, mass_of(i), s / 2);
     }
     m.front.geom = add_geom(i, m.front.body, front_x);
     if (rigid && i + 1 < num_modules_) {
-      m.back.body = make_body(centre_of(i) - s / 2, 2 * half_mass, s);  // back_i + front_{i+1}
+      m.back.body = make_body(centre_of(i) - s / 2, mass_of(i) + mass_of(i + 1),
+                              s);  // back_i + front_{i+1}
     } else {
-      m.back.body = make_body(back_x, half_mass, s / 2);
+      m.back.body = make_body(back_x, mass_of(i), s / 2);
     }
     m.back.geom = add_geom(i, m.back.body, back_x);
     m.hinge = dJointCreateHinge(world_, nullptr);
     dJointAttach(m.hinge, m.front.body, m.back.body);
-    dJointSetHingeAnchor(m.hinge, centre_of(i), 0, s / 2);
-    dJointSetHingeAxis(m.hinge, 0, 1, 0);
+    dReal anchor[3];
+    place(centre_of(i), 0, s / 2, anchor);
+    dJointSetHingeAnchor(m.hinge, anchor[0], anchor[1], anchor[2]);
+    if (posed)
+      dJointSetHingeAxis(m.hinge, -sh, ch, 0);
+    else
+      dJointSetHingeAxis(m.hinge, 0, 1, 0);
     dJointSetHingeParam(m.hinge, dParamLoStop, -k_.hinge_range);
     dJointSetHingeParam(m.hinge, dParamHiStop, k_.hinge_range);
-    dJointSetHingeParam(m.hinge, dParamFMax, k_.servo_max_torque);
+    dJointSetHingeParam(m.hinge, dParamFMax,
+                        k_.servo_max_torque * draw_.torque_scale[static_cast<std::size_t>(i)]);
     dJointSetHingeParam(m.hinge, dParamVel, 0);
     if (k_.servo_gear_friction > 0) {
       // Gear friction: an angular motor about the hinge axis (fixed in the front half) that
@@ -272,7 +303,7 @@ void GaitScenario::NearCallback(void* data, dGeomID a, dGeomID b) {
   const int n = dCollide(a, b, kMaxContacts, &contact[0].geom, sizeof(dContact));
   for (int i = 0; i < n; ++i) {
     contact[i].surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
-    contact[i].surface.mu = self->k_.friction;
+    contact[i].surface.mu = self->k_.friction * self->draw_.friction_scale;
     contact[i].surface.soft_erp = self->k_.contact_erp;
     contact[i].surface.soft_cfm = self->k_.contact_cfm;
     dJointID j = dJointCreateContact(self->world_, self->contacts_, &contact[i]);
@@ -282,10 +313,11 @@ void GaitScenario::NearCallback(void* data, dGeomID a, dGeomID b) {
 
 void GaitScenario::PhysicsStep() {
   // Servo: commanded hinge speed proportional to the angle error, capped; torque capped.
-  for (auto& m : modules_) {
+  for (std::size_t i = 0; i < modules_.size(); ++i) {
+    Module& m = modules_[i];
     const double error = m.target - dJointGetHingeAngle(m.hinge);
-    dJointSetHingeParam(m.hinge, dParamVel,
-                        std::clamp(k_.servo_gain * error, -k_.servo_max_speed, k_.servo_max_speed));
+    const double cap = k_.servo_max_speed * draw_.speed_scale[i];
+    dJointSetHingeParam(m.hinge, dParamVel, std::clamp(k_.servo_gain * error, -cap, cap));
   }
   dSpaceCollide(space_, this, &GaitScenario::NearCallback);
   if (k_.iterative_solver)
@@ -384,7 +416,12 @@ void GaitScenario::SampleSensors() {
       GeomPointToWorld(f.geom, f.local_point, origin);
       GeomVectorToWorld(f.geom, f.local_dir, dir);
       const double d = std::max(0.0, CastRay(i, origin, dir) - inset);
-      sensors_[static_cast<std::size_t>(i * kGaitSensors + j)] = d < range ? 1.0 - d / range : 0.0;
+      double v = d < range ? 1.0 - d / range : 0.0;
+      if (envelope_.sensor_noise > 0) {  // module by module, in sensor order
+        const double u = static_cast<double>(noise_rng_() >> 11) * 0x1.0p-53;
+        v = std::clamp(v + (2 * u - 1) * envelope_.sensor_noise, 0.0, 1.0);
+      }
+      sensors_[static_cast<std::size_t>(i * kGaitSensors + j)] = v;
     }
   }
 }

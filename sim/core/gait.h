@@ -10,6 +10,7 @@
 #include <ode/ode.h>
 
 #include <array>
+#include <random>
 #include <vector>
 
 #include "sim/core/constants.h"
@@ -80,6 +81,9 @@ class GaitScenario final : public Scenario {
   static void NearCallback(void* data, dGeomID a, dGeomID b);
 
   GaitConstants k_;
+  Envelope envelope_;
+  EnvelopeDraw draw_;          // this episode's draws (all 1 and 0 for no envelope)
+  std::mt19937_64 noise_rng_;  // this episode's sensor noise
   int num_modules_;
   Joints joints_;
   double step_;  // s per physics step (by docking)

@@ -17,13 +17,16 @@ double PendulumFitness(double cost, std::int64_t ticks) {
 }
 
 PendulumScenario::PendulumScenario(const ScenarioConfig& config, PendulumConstants constants)
-    : k_(constants) {
+    : k_(constants), envelope_(config.envelope) {
   total_ticks_ = EpisodeTicks(config.duration, k_.control_period, k_.ticks);
   Reset(0);
 }
 
 void PendulumScenario::Reset(std::uint64_t seed) {
   state_ = PendulumState{};
+  const EnvelopeDraw draw = DrawEnvelope(envelope_, seed, 2);
+  if (envelope_.start_angle > 0) state_.phi = WrapAngle(M_PI + draw.start_angle);
+  cart_speed_scale_ = draw.cart_speed_scale;
   actuators_[0] = actuators_[1] = 0;
   noise_rng_.seed(seed);
   tick_ = 0;
@@ -126,7 +129,7 @@ void PendulumScenario::Integrate(double v_cmd) {
 StepStatus PendulumScenario::Step(const SubstepObserver& observer) {
   if (!error_.empty()) return StepStatus::kFailed;
   if (tick_ >= total_ticks_) return StepStatus::kFinished;
-  const double v_cmd = k_.max_speed * (actuators_[1] - actuators_[0]) / 2.0;
+  const double v_cmd = k_.max_speed * cart_speed_scale_ * (actuators_[1] - actuators_[0]) / 2.0;
   const int substeps = static_cast<int>(std::lround(k_.control_period / k_.integration_step));
   for (int i = 0; i < substeps; ++i) {
     Integrate(v_cmd);

@@ -72,6 +72,8 @@ class PendulumScenario final : public Scenario {
   void SampleSensors();          // noisy readings for the current tick
 
   PendulumConstants k_;
+  Envelope envelope_;
+  double cart_speed_scale_ = 1;  // this episode's envelope draw
   std::int64_t total_ticks_;
   PendulumState state_;
   double actuators_[2] = {0, 0};

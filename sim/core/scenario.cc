@@ -42,7 +42,7 @@ std::string CheckConfig(const ScenarioConfig& c) {
     return "physics step: 0 (the task's) or up to 0.05 s";
   if (!std::isfinite(c.friction_scale) || c.friction_scale <= 0 || c.friction_scale > 10)
     return "friction scale: above 0, at most 10";
-  return "";
+  return CheckEnvelope(c.envelope);
 }
 
 std::int64_t EpisodeTicks(double duration, double control_period, std::int64_t default_ticks) {

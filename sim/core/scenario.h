@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "sim/core/envelope.h"
+
 namespace ahhs::sim {
 
 enum class ScenarioKind { kGait, kPendulum };
@@ -29,6 +31,10 @@ struct ScenarioConfig {
   // friction (pendulum). Never on the wire: a replay perturbs the physics slightly with it to
   // tell a robust behaviour from one that deterministic chaos happened to favour.
   double friction_scale = 1;
+  // The envelope of noise every episode of this configuration is perturbed with (a task
+  // setting: sim/core/envelope.h). Not yet on the wire: an arena that sends RESET refuses an
+  // envelope other than none, so only direct episodes (evolution's default arena, replays) use it.
+  Envelope envelope;
 };
 
 // Parses "gait"/"pendulum" and "damped"/"fixed"; throw std::invalid_argument otherwise.

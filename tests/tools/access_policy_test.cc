@@ -32,7 +32,7 @@ TEST_CASE("a WebSocket's Origin must be absent or the viewer's own", "[view][sec
     CHECK_FALSE(p.OriginAllowed(origin));
 }
 
-TEST_CASE("--allow-host takes names and addresses only", "[view][security]") {
+TEST_CASE("the viewer's --allow-host takes names and addresses only", "[view][security]") {
   CHECK(AccessPolicy::CheckName("lab-pc.local") == "");
   CHECK(AccessPolicy::CheckName("10.0.0.5:9000") == "");
   CHECK(AccessPolicy::CheckName("[fe80::1]") == "");

@@ -24,6 +24,7 @@
 #include "evolver/arena/direct_arena.h"
 #include "evolver/arena/episode.h"
 #include "evolver/arena/episode_recorder.h"
+#include "evolver/arena/post_eval.h"
 #include "evolver/arena/robustness.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/store/atomic_file.h"
@@ -32,6 +33,7 @@
 #include "modules/core/random.h"
 #include "modules/core/variation.h"
 #include "sim/core/behaviour.h"
+#include "sim/node/envelope_options.h"
 
 namespace fs = std::filesystem;
 namespace al = ahhs::arena;
@@ -96,6 +98,16 @@ int main(int argc, char** argv) {
                  "fitness robust or a knife-edge of deterministic chaos? (docs/scenarios.md)")
       ->check(CLI::Range(2, 1000));
   app.add_option("--robustness-csv", robustness_csv, "where --robustness writes its results");
+  ahhs::sim::EnvelopeOptions envelope_options;
+  envelope_options.Add(app,
+                       "an envelope of noise for every episode replayed (default none; with "
+                       "--post-eval: paper)");
+  int post_eval = 0;
+  app.add_option("--post-eval", post_eval,
+                 "also replay on N held-out episodes (seeds no run evaluates with) under the "
+                 "envelope: median, quartiles, min, and the share that succeeds "
+                 "(docs/evolution.md)")
+      ->check(CLI::Range(1, 100000));
   app.add_option("--body-csv", body_csv,
                  "write the organism per tick as CSV (pendulum: cart_x, pole_angle in rad; gait: "
                  "centroid_x, centroid_y in m)");
@@ -121,6 +133,14 @@ int main(int argc, char** argv) {
   app.add_option("--to", video_to, "--video: end, simulated seconds (default: the end)")
       ->check(CLI::Range(0.0, 1e6));
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  ahhs::sim::Envelope envelope, post_envelope;  // of the replay; of --post-eval
+  try {
+    envelope = envelope_options.Resolve();
+    post_envelope = envelope_options.Resolve("paper");
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "ahhs-replay: " << e.what() << '\n';
+    return ahhs::cli::kExitUsage;
+  }
 
   al::EpisodeSpec spec;
   am::MutationParams mutation;  // of the mutants: the run's, or the paper's
@@ -188,6 +208,7 @@ int main(int argc, char** argv) {
     }
     spec.config.physics_step = physics_step;
     spec.config.friction_scale = friction_scale;
+    spec.config.envelope = envelope;
     if (!robustness_csv.empty() && robustness == 0)
       throw std::invalid_argument("--robustness-csv needs --robustness N");
     if (!mutation_profile.empty()) mutation.profile = am::ParseMutationProfile(mutation_profile);
@@ -254,6 +275,10 @@ int main(int argc, char** argv) {
       }
       std::printf("%s\n", r.Describe(result.ok ? result.fitness : 0).c_str());
     }
+    if (post_eval > 0) {
+      const al::PostEvaluation p = al::PostEvaluate(spec, post_envelope, post_eval);
+      std::printf("%s\n", p.Describe(spec.config.kind).c_str());
+    }
     std::printf("replayed %s with seed %llu\n", what.c_str(),
                 static_cast<unsigned long long>(spec.seed));
     if (!result.ok) {
@@ -265,9 +290,10 @@ int main(int argc, char** argv) {
     if (stored_fitness) {
       if (*stored_fitness == fitness) {
         std::printf("stored fitness %s: reproduced exactly\n", Exact(*stored_fitness).c_str());
-      } else if (physics_step > 0 || friction_scale != 1) {
+      } else if (physics_step > 0 || friction_scale != 1 || !spec.config.envelope.none()) {
         std::printf(
-            "stored fitness %s: in the changed physics (--physics-step, --friction-scale) "
+            "stored fitness %s: in the changed physics (--physics-step, --friction-scale, "
+            "--envelope) "
             "the replay differs by %.3g\n",
             Exact(*stored_fitness).c_str(), fitness - *stored_fitness);
       } else {

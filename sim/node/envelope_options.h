@@ -1,0 +1,52 @@
+// The envelope of noise as command-line options, declared once for every tool that runs
+// episodes directly: --envelope none|paper|wide, then any single key (--envelope.friction 0.1,
+// ...) on top of the preset (sim/core/envelope.h, docs/scenarios.md).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <map>
+#include <string>
+
+#include "sim/core/envelope.h"
+
+namespace ahhs::sim {
+
+class EnvelopeOptions {
+ public:
+  void Add(CLI::App& app, const std::string& preset_help) {
+    preset_opt_ = app.add_option("--envelope", preset_, preset_help)
+                      ->check(CLI::IsMember({"none", "paper", "wide"}));
+    for (const auto& k : EnvelopeKeys())
+      app.add_option(std::string("--") + k.name, keys_[k.name],
+                     std::string(k.help) +
+                         " (half-width w, on top of "
+                         "--envelope)")
+          ->check(CLI::Range(0.0, 1.0));
+    app_ = &app;
+  }
+  // Whether any envelope option was given.
+  bool given() const {
+    if (preset_opt_ && preset_opt_->count() > 0) return true;
+    for (const auto& k : EnvelopeKeys())
+      if (app_->count(std::string("--") + k.name) > 0) return true;
+    return false;
+  }
+  // The preset (or `fallback` when none was given) with the single keys applied. Throws
+  // std::invalid_argument naming the bad key.
+  Envelope Resolve(const std::string& fallback = "none") const {
+    Envelope e = EnvelopePreset(preset_opt_ && preset_opt_->count() > 0 ? preset_ : fallback);
+    for (const auto& k : EnvelopeKeys())
+      if (app_->count(std::string("--") + k.name) > 0) e.*k.field = keys_.at(k.name);
+    const std::string error = CheckEnvelope(e);
+    if (!error.empty()) throw std::invalid_argument("--" + error);
+    return e;
+  }
+
+ private:
+  CLI::App* app_ = nullptr;
+  CLI::Option* preset_opt_ = nullptr;
+  std::string preset_ = "none";
+  std::map<std::string, double> keys_;
+};
+
+}  // namespace ahhs::sim

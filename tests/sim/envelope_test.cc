@@ -1,0 +1,167 @@
+// The envelope of noise (sim/core/envelope.h): its draws are a pure function of the seed, no
+// envelope is exactly the task without one, and each key perturbs what it names.
+#include "sim/core/envelope.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <memory>
+
+#include "sim/core/drive.h"
+#include "sim/core/gait.h"
+#include "sim/core/scenario.h"
+
+using namespace ahhs::sim;
+
+namespace {
+
+// A drive's episode, as ahhs-sim --drive runs it; returns the fitness.
+double DriveEpisode(ScenarioKind kind, Joints joints, DriveKind drive, std::uint64_t seed,
+                    double duration, const Envelope& envelope = {},
+                    std::vector<double>* first_sensors = nullptr) {
+  ScenarioConfig config = MakeScenarioConfig(kind, joints, 5, duration);
+  config.envelope = envelope;
+  auto sim = MakeScenario(config);
+  sim->Reset(seed);
+  if (first_sensors) {
+    first_sensors->assign(static_cast<std::size_t>(sim->num_sensors()), 0);
+    sim->ReadSensors(0, first_sensors->data());
+  }
+  std::vector<double> command(static_cast<std::size_t>(sim->num_actuators()));
+  StepStatus status = StepStatus::kRunning;
+  while (status == StepStatus::kRunning) {
+    for (int c = 0; c < sim->num_compartments(); ++c) {
+      DriveCommand(drive, *sim, c, command.data());
+      sim->SetActuators(c, command.data());
+    }
+    status = sim->Step();
+  }
+  REQUIRE(status == StepStatus::kFinished);
+  return sim->Fitness();
+}
+
+}  // namespace
+
+TEST_CASE("envelope draws are a pure function of the seed (golden values)", "[envelope]") {
+  const Envelope paper = EnvelopePreset("paper");
+  const EnvelopeDraw a = DrawEnvelope(paper, 7, 5), b = DrawEnvelope(paper, 7, 5);
+  CHECK(a.friction_scale == b.friction_scale);
+  CHECK(a.mass_scale == b.mass_scale);
+  CHECK(a.heading == b.heading);
+  // Golden: a change here changes every envelope episode ever evaluated (a physics change).
+  CHECK(a.friction_scale == 0.96344403677749124);
+  CHECK(a.mass_scale[4] == 0.98469194204727506);
+  CHECK(a.heading == 0.04462363882210655);
+  CHECK(a.cart_speed_scale == 0.97242119121168136);
+  for (std::size_t m = 0; m < 5; ++m) {
+    CHECK(std::fabs(a.mass_scale[m] - 1) <= 0.05);
+    CHECK(std::fabs(a.torque_scale[m] - 1) <= 0.05);
+    CHECK(std::fabs(a.speed_scale[m] - 1) <= 0.05);
+  }
+  CHECK(std::fabs(a.offset_x) <= 0.005);
+  CHECK(DrawEnvelope(paper, 8, 5).friction_scale != a.friction_scale);
+  // Giving one key a width never changes another key's draw.
+  Envelope only_mass;
+  only_mass.mass = paper.mass;
+  CHECK(DrawEnvelope(only_mass, 7, 5).mass_scale == a.mass_scale);
+  CHECK(DrawEnvelope(only_mass, 7, 5).friction_scale == 1.0);
+  const EnvelopeDraw none = DrawEnvelope(Envelope{}, 7, 5);
+  CHECK(none.friction_scale == 1.0);
+  CHECK(none.heading == 0.0);
+  CHECK(none.mass_scale == std::vector<double>(5, 1.0));
+}
+
+TEST_CASE("no envelope gives exactly the bits of the task without one, for every task",
+          "[envelope]") {
+  // Golden fitnesses of `ahhs-sim --drive D --seed 3 --duration 10` from the build before the
+  // envelope existed (physics versions 2026-12-01 / 2026-12-01.2).
+  CHECK(DriveEpisode(ScenarioKind::kGait, Joints::kDamped, DriveKind::kWave, 3, 10) ==
+        0.7291256053748767);
+  CHECK(DriveEpisode(ScenarioKind::kGait, Joints::kFixed, DriveKind::kWave, 3, 10) ==
+        0.71924482214441543);
+  CHECK(DriveEpisode(ScenarioKind::kPendulum, Joints::kDamped, DriveKind::kSwingUp, 3, 10) ==
+        0.55936332404768008);
+}
+
+TEST_CASE("each envelope key perturbs the episode, and the same seed gives the same bits",
+          "[envelope]") {
+  const double plain = DriveEpisode(ScenarioKind::kGait, Joints::kFixed, DriveKind::kWave, 3, 5);
+  for (const auto& k : EnvelopeKeys()) {
+    // The pendulum's keys below; sensor noise cannot change an open-loop drive (its own test).
+    if (k.field == &Envelope::start_angle || k.field == &Envelope::cart_speed ||
+        k.field == &Envelope::sensor_noise)
+      continue;
+    Envelope e;
+    e.*k.field = EnvelopePreset("paper").*k.field;
+    const double a = DriveEpisode(ScenarioKind::kGait, Joints::kFixed, DriveKind::kWave, 3, 5, e);
+    const double b = DriveEpisode(ScenarioKind::kGait, Joints::kFixed, DriveKind::kWave, 3, 5, e);
+    INFO(k.name);
+    CHECK(a == b);
+    CHECK(a != plain);
+  }
+  const double pendulum =
+      DriveEpisode(ScenarioKind::kPendulum, Joints::kDamped, DriveKind::kSwingUp, 3, 5);
+  for (auto field : {&Envelope::start_angle, &Envelope::cart_speed}) {
+    Envelope e;
+    e.*field = EnvelopePreset("paper").*field;
+    CHECK(DriveEpisode(ScenarioKind::kPendulum, Joints::kDamped, DriveKind::kSwingUp, 3, 5, e) !=
+          pendulum);
+  }
+}
+
+TEST_CASE("sensor noise stays within its width and the readings' range", "[envelope]") {
+  std::vector<double> clean, noisy;
+  DriveEpisode(ScenarioKind::kGait, Joints::kFixed, DriveKind::kZero, 3, 0.1, {}, &clean);
+  Envelope e;
+  e.sensor_noise = 0.023;
+  DriveEpisode(ScenarioKind::kGait, Joints::kFixed, DriveKind::kZero, 3, 0.1, e, &noisy);
+  bool any = false;
+  for (std::size_t j = 0; j < clean.size(); ++j) {
+    CHECK(noisy[j] >= 0);
+    CHECK(noisy[j] <= 1);
+    CHECK(std::fabs(noisy[j] - clean[j]) <= 0.023);
+    any = any || noisy[j] != clean[j];
+  }
+  CHECK(any);
+}
+
+TEST_CASE("a posed start keeps the chain's shape: heading and offset move it whole", "[envelope]") {
+  Envelope e;
+  e.start_heading = 0.5;
+  e.start_offset = 0.05;
+  ScenarioConfig config = MakeScenarioConfig(ScenarioKind::kGait, Joints::kDamped, 5, 1);
+  config.envelope = e;
+  GaitScenario posed(config);
+  posed.Reset(11);
+  GaitScenario plain(MakeScenarioConfig(ScenarioKind::kGait, Joints::kDamped, 5, 1));
+  plain.Reset(11);
+  std::vector<BodyState> a, b;
+  posed.Bodies(&a);
+  plain.Bodies(&b);
+  // Distances between module bodies are the same: the chain was moved, not bent.
+  auto dist = [](const BodyState& p, const BodyState& q) {
+    return std::hypot(p.position[0] - q.position[0], p.position[1] - q.position[1],
+                      p.position[2] - q.position[2]);
+  };
+  for (std::size_t i = 0; i + 1 < 10; ++i)
+    CHECK(dist(a[i], a[i + 1]) == Approx(dist(b[i], b[i + 1])));
+  CHECK(a[0].position[1] != Approx(b[0].position[1]));  // turned
+  CHECK(posed.MaxDockingGap() < 1e-9);
+  // A posed chain at rest stays at rest (no motion under a constant command).
+  for (int t = 0; t < 20; ++t) posed.Step();
+  CHECK(posed.Cost() < 1e-3);
+}
+
+TEST_CASE("envelope presets and checks", "[envelope]") {
+  CHECK(EnvelopePreset("none").none());
+  CHECK(EnvelopeName(EnvelopePreset("paper")) == "paper");
+  CHECK(EnvelopeName(EnvelopePreset("wide")) == "wide");
+  CHECK(EnvelopePreset("paper").sensor_noise == 0.023);
+  CHECK_THROWS(EnvelopePreset("loud"));
+  Envelope e;
+  e.friction = 0.6;
+  CHECK_THAT(CheckEnvelope(e), Catch::Contains("envelope.friction"));
+  e = Envelope{};
+  e.start_offset = -0.1;
+  CHECK_THAT(CheckEnvelope(e), Catch::Contains("envelope.start-offset"));
+  CHECK(CheckEnvelope(EnvelopePreset("wide")).empty());
+}

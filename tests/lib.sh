@@ -24,10 +24,22 @@ ahhs_netns() {
   exec "${own[@]}" "${AHHS_SOURCE_DIR:?}/tools/ahhs-netns" bash "$@"
 }
 
+# ahhs_own_group "$0" "$@": only the process group of its own, for a test that cannot run in a
+# network namespace but kills by pattern (ahhs_scratch PATTERN).
+ahhs_own_group() {
+  [[ $(ps -o pgid= -p $$ | tr -d ' ') == "$$" ]] && return
+  exec setsid bash "$@"
+}
+
 ahhs_scratch() {
   tmp=$(mktemp -d)
   pg=$(ps -o pgid= -p $$ | tr -d ' ')
   _ahhs_kill=${1:-}
+  # Killing by pattern in CTest's own group would reach the tests running beside this one.
+  if [[ -n "$_ahhs_kill" && "$pg" != "$$" && -z "${AHHS_IN_NETNS:-}" ]]; then
+    rm -rf "$tmp"
+    fail "ahhs_scratch PATTERN needs a process group of its own: call ahhs_netns or ahhs_own_group first"
+  fi
   trap _ahhs_cleanup EXIT
 }
 

@@ -32,12 +32,6 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
                          const std::function<void(std::chrono::microseconds)>& pump,
                          const std::function<bool(std::string*)>& alive) {
   EpisodeResult result;
-  if (!spec.config.envelope.none()) {  // RESET cannot carry it yet: the sim would ignore it
-    result.error =
-        "an envelope of noise (" + sim::EnvelopeName(spec.config.envelope) +
-        ") is not carried by SIM/CONTROL RESET yet: run its episodes in the direct arena";
-    return result;
-  }
   const bus::ArenaChannels ch(spec.arena);
   const int modules = sim::ShapeOf(spec.config).compartments;
   std::set<int> ready;

@@ -19,6 +19,7 @@
 #include "sim/core/behaviour.h"
 #include "sim/core/drive.h"
 #include "sim/core/scenario.h"
+#include "sim/node/envelope_options.h"
 #include "sim/node/episode_server.h"
 #include "sim/node/sim_node.h"
 
@@ -173,7 +174,20 @@ int main(int argc, char** argv) {
                  "an episode up")
       ->check(CLI::Range(1, 86400))
       ->capture_default_str();
+  as::EnvelopeOptions envelope_options;
+  envelope_options.Add(app,
+                       "with --drive: an envelope of noise drawn from --seed (default none; in bus "
+                       "mode each RESET brings its own; docs/scenarios.md)");
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  as::Envelope envelope;
+  try {
+    envelope = envelope_options.Resolve();
+    if (envelope_options.given() && drive_opt->count() == 0)
+      throw std::invalid_argument("--envelope needs --drive (in bus mode RESET brings it)");
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "ahhs-sim: " << e.what() << '\n';
+    return ahhs::cli::kExitUsage;
+  }
 
   if (physics == "none") {
     if (drive_opt->count() > 0 || !hardware_modules.empty()) {
@@ -207,6 +221,7 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--duration must be a positive number of seconds");
     as::ScenarioConfig config = as::MakeScenarioConfig(as::ParseScenarioKind(scenario),
                                                        as::ParseJoints(joints), modules, duration);
+    config.envelope = envelope;
     if (config.kind == as::ScenarioKind::kGait && modules < 2)
       throw std::invalid_argument("--modules: a gait organism needs at least 2 modules");
     const as::DriveKind drive_kind = as::ParseDrive(drive);

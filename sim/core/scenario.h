@@ -32,8 +32,7 @@ struct ScenarioConfig {
   // tell a robust behaviour from one that deterministic chaos happened to favour.
   double friction_scale = 1;
   // The envelope of noise every episode of this configuration is perturbed with (a task
-  // setting: sim/core/envelope.h). Not yet on the wire: an arena that sends RESET refuses an
-  // envelope other than none, so only direct episodes (evolution's default arena, replays) use it.
+  // setting, on the wire in RESET and EVAL/REQUEST: sim/core/envelope.h).
   Envelope envelope;
 };
 

@@ -37,6 +37,9 @@ void EpisodeServer::OnControl(const sim_control_t& m) {
       std::string error = ConfigFromReset(m, &config);
       if (error.empty() && m.clock_mode != sim_control_t::MODE_REALTIME)
         error = "a physical organism runs in real time only (ahhs-launch --realtime)";
+      if (error.empty() && !config.envelope.none())
+        error = "a physical organism cannot be given an envelope of noise (" +
+                EnvelopeName(config.envelope) + "): the real world is its own";
       if (!error.empty()) {
         ++dropped_;
         say_(ep + " refused: " + error);

@@ -116,7 +116,8 @@ std::int8_t JointsToWire(Joints joints) {
 }
 
 std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_modules,
-                               std::int8_t joints, double duration, ScenarioConfig* config) {
+                               std::int8_t joints, double duration, const Envelope& envelope,
+                               ScenarioConfig* config) {
   ScenarioConfig c;
   if (scenario == "gait") {
     c.kind = ScenarioKind::kGait;
@@ -133,6 +134,7 @@ std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_mod
     return "unknown joints value " + std::to_string(joints);
   }
   c = MakeScenarioConfig(c.kind, c.joints, num_modules, duration);
+  c.envelope = envelope;
   const std::string error = CheckConfig(c);
   if (!error.empty()) return error;
   *config = c;

@@ -41,22 +41,43 @@ void KeepStaticBodies(std::vector<BodyState>* bodies);
 inline constexpr std::int64_t kSceneEveryTicks = 20;
 inline bool SceneDue(std::int64_t tick) { return tick % kSceneEveryTicks == 0; }
 
-// The one wire form of a ScenarioConfig: the fields (scenario, num_modules, joints, duration)
-// that sim_control_t (RESET) and eval_request_t both carry.
+// The one wire form of a ScenarioConfig: the fields (scenario, num_modules, joints, duration,
+// the envelope's half-widths) that sim_control_t (RESET) and eval_request_t both carry.
 std::int8_t JointsToWire(Joints joints);
 // Checks the four fields and makes the config; returns "" or why they are refused.
 std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_modules,
-                               std::int8_t joints, double duration, ScenarioConfig* config);
+                               std::int8_t joints, double duration, const Envelope& envelope,
+                               ScenarioConfig* config);
 template <class Message>
 void ScenarioToWire(const ScenarioConfig& config, Message* m) {
   m->scenario = ScenarioName(config.kind);
   m->num_modules = ShapeOf(config).compartments;
   m->joints = JointsToWire(config.joints);
   m->duration = config.duration;
+  const Envelope& e = config.envelope;
+  m->envelope_friction = e.friction;
+  m->envelope_mass = e.mass;
+  m->envelope_servo_torque = e.servo_torque;
+  m->envelope_servo_speed = e.servo_speed;
+  m->envelope_start_heading = e.start_heading;
+  m->envelope_start_offset = e.start_offset;
+  m->envelope_sensor_noise = e.sensor_noise;
+  m->envelope_start_angle = e.start_angle;
+  m->envelope_cart_speed = e.cart_speed;
 }
 template <class Message>
 std::string ScenarioFromWire(const Message& m, ScenarioConfig* config) {
-  return ScenarioFromFields(m.scenario, m.num_modules, m.joints, m.duration, config);
+  Envelope e;
+  e.friction = m.envelope_friction;
+  e.mass = m.envelope_mass;
+  e.servo_torque = m.envelope_servo_torque;
+  e.servo_speed = m.envelope_servo_speed;
+  e.start_heading = m.envelope_start_heading;
+  e.start_offset = m.envelope_start_offset;
+  e.sensor_noise = m.envelope_sensor_noise;
+  e.start_angle = m.envelope_start_angle;
+  e.cart_speed = m.envelope_cart_speed;
+  return ScenarioFromFields(m.scenario, m.num_modules, m.joints, m.duration, e, config);
 }
 
 // Validates a RESET and turns it into a scenario config; returns "" or why it is refused.

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 #include <set>
 
+#include "evolver/arena/direct_arena.h"
 #include "evolver/arena/fused_arena.h"
 #include "evolver/arena/post_eval.h"
 #include "evolver/ga/ga.h"
@@ -20,14 +21,24 @@ TEST_CASE("held-out seeds never equal a run's evaluation seeds", "[post-eval]") 
       for (int i = 0; i < 30; ++i) REQUIRE(held_out.count(evolver::EvaluationSeed(run, g, i)) == 0);
 }
 
-TEST_CASE("an arena that sends RESET refuses an envelope it cannot carry, never ignores it",
+TEST_CASE("an envelope travels in RESET: the fused arena equals the direct one, bit for bit",
           "[post-eval][envelope]") {
-  arena::EpisodeSpec spec;
-  spec.config = sim::MakeScenarioConfig(sim::ScenarioKind::kPendulum, sim::Joints::kDamped, 2, 1);
-  spec.config.envelope = sim::EnvelopePreset("paper");
-  modules::Rng rng(3);
-  spec.genome = modules::RandomGenome({modules::Variant::kAhhs2, 3, 4, 10, 2}, rng);
-  const arena::EpisodeResult r = arena::RunFused(spec);
-  CHECK_FALSE(r.ok);
-  CHECK_THAT(r.error, Catch::Contains("envelope of noise (paper)"));
+  for (auto kind : {sim::ScenarioKind::kPendulum, sim::ScenarioKind::kGait}) {
+    arena::EpisodeSpec spec;
+    spec.config = sim::MakeScenarioConfig(kind, sim::Joints::kDamped, 3, 5);
+    spec.config.envelope = sim::EnvelopePreset("wide");
+    spec.seed = 21;
+    modules::Rng rng(3);
+    const auto shape = sim::ShapeOf(spec.config);
+    spec.genome = modules::RandomGenome(
+        {modules::Variant::kAhhs2, 3, 8, shape.sensors, shape.actuators}, rng);
+    const arena::EpisodeResult direct = arena::RunDirectEpisode(spec);
+    const arena::EpisodeResult fused = arena::RunFused(spec);
+    REQUIRE(direct.ok);
+    REQUIRE(fused.ok);
+    CHECK(fused.fitness == direct.fitness);
+    arena::EpisodeSpec plain = spec;
+    plain.config.envelope = {};
+    CHECK(arena::RunDirectEpisode(plain).fitness != direct.fitness);
+  }
 }

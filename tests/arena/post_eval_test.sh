@@ -5,7 +5,7 @@
 # errors. (The draws' determinism: tests/sim/envelope_test.cc.)
 bin=${1:?usage: post_eval_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
-ahhs_scratch 'ahhs-replay'
+ahhs_scratch  # every command runs in the foreground: nothing to kill
 cd "$tmp"
 knife=$AHHS_SOURCE_DIR/tests/arena/data/knife-edge-damped-ahhs1-120.json
 replay=("$bin/ahhs-replay" --genome "$knife" --scenario gait --joints damped)

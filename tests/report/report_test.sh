@@ -36,7 +36,7 @@ grep -q "600 trace (module, tick) pairs; 0 incomplete" $tmp/count.out || fail "t
 "$bin/ahhs-replay" $tmp/gait --physics-step 0.00625 >$tmp/out 2>&1 && grep -q "reproduced exactly" $tmp/out ||
   fail "--physics-step 0.00625 (the task's): $(cat $tmp/out)"
 "$bin/ahhs-replay" $tmp/gait --physics-step 0.0025 >$tmp/out 2>&1 || fail "--physics-step 0.0025: $(cat $tmp/out)"
-grep -Eq "reproduced exactly|in the changed physics \(--physics-step, --friction-scale\) the replay differs by" $tmp/out || fail "$(cat $tmp/out)"
+grep -Eq "reproduced exactly|in the changed physics \(--physics-step, --friction-scale, --envelope\) the replay differs by" $tmp/out || fail "$(cat $tmp/out)"
 "$bin/ahhs-replay" $tmp/gait --physics-step 1 >$tmp/out 2>&1; [[ $? == 2 ]] || fail "--physics-step 1 accepted"
 echo "== ahhs-report"
 "$bin/ahhs-report" $tmp/a2-{1,2,3} $tmp/a1-{1,2,3} $tmp/gait -o $tmp/report >$tmp/report.out 2>&1 ||

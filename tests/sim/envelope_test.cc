@@ -9,8 +9,10 @@
 #include "sim/core/drive.h"
 #include "sim/core/gait.h"
 #include "sim/core/scenario.h"
+#include "sim/node/sim_codec.h"
 
 using namespace ahhs::sim;
+using ahhs::sim_control_t;
 
 namespace {
 
@@ -164,4 +166,21 @@ TEST_CASE("envelope presets and checks", "[envelope]") {
   e.start_offset = -0.1;
   CHECK_THAT(CheckEnvelope(e), Catch::Contains("envelope.start-offset"));
   CHECK(CheckEnvelope(EnvelopePreset("wide")).empty());
+}
+
+TEST_CASE("the envelope survives the wire, and a RESET with a bad one is refused", "[envelope]") {
+  ScenarioConfig config = MakeScenarioConfig(ScenarioKind::kGait, Joints::kFixed, 4, 3);
+  config.envelope = EnvelopePreset("wide");
+  config.envelope.cart_speed = 0.125;
+  sim_control_t reset{};
+  reset.command = sim_control_t::RESET;
+  ScenarioToWire(config, &reset);
+  ScenarioConfig back;
+  REQUIRE(ConfigFromReset(reset, &back) == "");
+  CHECK(back.envelope == config.envelope);
+  reset.envelope_mass = std::nan("");
+  CHECK_THAT(ConfigFromReset(reset, &back), Catch::Contains("envelope.mass"));
+  reset.envelope_mass = 0;
+  reset.envelope_start_heading = 2;
+  CHECK_THAT(ConfigFromReset(reset, &back), Catch::Contains("envelope.start-heading"));
 }

@@ -31,12 +31,14 @@ struct Rig {
         bus, "T/TOPOLOGY",
         [this](const std::string&, const topology_t& t) { topologies.push_back(t); });
   }
-  void Send(std::int8_t command, std::int64_t episode, bool realtime = true) {
+  void Send(std::int8_t command, std::int64_t episode, bool realtime = true,
+            const sim::Envelope& envelope = {}) {
     sim_control_t c{};
     c.command = command;
     c.episode = episode;
     sim::ScenarioConfig config =
         sim::MakeScenarioConfig(sim::ScenarioKind::kGait, sim::Joints::kDamped, 3, 0.5);
+    config.envelope = envelope;
     sim::ScenarioToWire(config, &c);
     c.clock_mode = realtime ? sim_control_t::MODE_REALTIME : sim_control_t::MODE_LOCKSTEP;
     bus::PublishTyped(bus, "T/SIM/CONTROL", c);
@@ -139,4 +141,14 @@ TEST_CASE("the episode server refuses lockstep and STEP: a physical organism run
   rig.PollFor(5);
   CHECK(rig.server.phase() == sim::EpisodeServer::Phase::kReady);
   CHECK(rig.server.dropped() == dropped + 1);
+}
+
+TEST_CASE("the episode server refuses an envelope of noise: the real world is its own",
+          "[envelope]") {
+  Rig rig(false);
+  rig.Send(sim_control_t::RESET, 13, true, sim::EnvelopePreset("paper"));
+  rig.PollFor(5);
+  CHECK(rig.server.phase() == sim::EpisodeServer::Phase::kIdle);
+  REQUIRE(rig.said.size() == 1);
+  CHECK(rig.said[0].find("cannot be given an envelope of noise (paper)") != std::string::npos);
 }

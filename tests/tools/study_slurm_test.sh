@@ -16,6 +16,7 @@ src=$AHHS_SOURCE_DIR
 [[ $(id -u) == 0 ]] || { echo "SKIPPED: a private Slurm needs root (slurmd)"; exit 77; }
 netns="$src/tools/ahhs-netns"
 wrap="--task-wrapper $netns"
+ahhs_own_group "$0" "$@"
 ahhs_scratch 'ahhs-study|ahhs-evolve|ahhs-worker'
 trap '[[ -n "${SLURM_CONF:-}" ]] && scancel -u "$(id -un)" 2>/dev/null; "$src/tools/slurm-local" stop $tmp/slurm; _ahhs_cleanup' EXIT
 S="$bin/ahhs-study"

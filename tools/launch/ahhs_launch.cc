@@ -18,6 +18,7 @@
 #include "evolver/arena/process_arena.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/random.h"
+#include "sim/node/envelope_options.h"
 
 namespace al = ahhs::arena;
 
@@ -90,7 +91,18 @@ int main(int argc, char** argv) {
                  "real time, gait: modules whose bodies are hardware (N[,M...]); the sim follows "
                  "their firmware's hinge_angle and leaves their SENSORS to it (docs/hardware.md)");
   app.add_flag("-v,--verbose", verbose, "show the children's output");
+  ahhs::sim::EnvelopeOptions envelope_options;
+  envelope_options.Add(app,
+                       "an envelope of noise for the episode, drawn from its seed (default none; "
+                       "docs/scenarios.md)");
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  ahhs::sim::Envelope envelope;
+  try {
+    envelope = envelope_options.Resolve();
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "ahhs-launch: " << e.what() << '\n';
+    return ahhs::cli::kExitUsage;
+  }
 
   al::EpisodeSpec spec;
   try {
@@ -98,6 +110,7 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--duration must be positive");
     spec.config = ahhs::sim::MakeScenarioConfig(ahhs::sim::ParseScenarioKind(scenario),
                                                 ahhs::sim::ParseJoints(joints), modules, duration);
+    spec.config.envelope = envelope;
     const std::string config_error = ahhs::sim::CheckConfig(spec.config);
     if (!config_error.empty()) throw std::invalid_argument(config_error);
     nlohmann::json meta;

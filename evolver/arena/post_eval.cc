@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <utility>
 
 #include "evolver/arena/direct_arena.h"
 #include "evolver/arena/robustness.h"
@@ -57,16 +58,11 @@ PostEvaluation PostEvaluate(const EpisodeSpec& spec, const sim::Envelope& envelo
   r.success_share =
       n > 0 ? static_cast<double>(std::count(r.succeeded.begin(), r.succeeded.end(), true)) / n
             : 0.0;
-  if (ok.empty()) {
-    r.median = r.lower_quartile = r.upper_quartile = r.min =
-        std::numeric_limits<double>::quiet_NaN();
-    return r;
-  }
-  std::sort(ok.begin(), ok.end());
-  r.median = Quantile(ok, 0.5);
-  r.lower_quartile = Quantile(ok, 0.25);
-  r.upper_quartile = Quantile(ok, 0.75);
-  r.min = ok.front();
+  const Spread s = SpreadOf(std::move(ok));
+  r.median = s.median;
+  r.lower_quartile = s.lower_quartile;
+  r.upper_quartile = s.upper_quartile;
+  r.min = s.min;
   return r;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <utility>
 
 #include "evolver/arena/direct_arena.h"
 
@@ -14,6 +15,16 @@ double Quantile(const std::vector<double>& sorted, double q) {
   const auto lo = static_cast<std::size_t>(std::floor(pos));
   const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
   return sorted[lo] + (pos - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
+}
+
+Spread SpreadOf(std::vector<double> values) {
+  if (values.empty()) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return {nan, nan, nan, nan, nan};
+  }
+  std::sort(values.begin(), values.end());
+  return {Quantile(values, 0.5), Quantile(values, 0.25), Quantile(values, 0.75), values.front(),
+          values.back()};
 }
 
 std::vector<double> RobustnessScales(int n) {
@@ -45,17 +56,12 @@ Robustness MeasureRobustness(const EpisodeSpec& spec, int n) {
       ++r.failed;
     }
   }
-  if (ok.empty()) {
-    r.median = r.lower_quartile = r.upper_quartile = r.min = r.max =
-        std::numeric_limits<double>::quiet_NaN();
-    return r;
-  }
-  std::sort(ok.begin(), ok.end());
-  r.median = Quantile(ok, 0.5);
-  r.lower_quartile = Quantile(ok, 0.25);
-  r.upper_quartile = Quantile(ok, 0.75);
-  r.min = ok.front();
-  r.max = ok.back();
+  const Spread s = SpreadOf(std::move(ok));
+  r.median = s.median;
+  r.lower_quartile = s.lower_quartile;
+  r.upper_quartile = s.upper_quartile;
+  r.min = s.min;
+  r.max = s.max;
   return r;
 }
 

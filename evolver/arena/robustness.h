@@ -14,6 +14,12 @@ namespace ahhs::arena {
 // The q-quantile of sorted values, linear between order statistics (numpy's default).
 double Quantile(const std::vector<double>& sorted, double q);
 
+// Median, quartiles and range of some values; all NaN when there are none.
+struct Spread {
+  double median, lower_quartile, upper_quartile, min, max;
+};
+Spread SpreadOf(std::vector<double> values);
+
 // Friction scales of a robustness check with n replays, from 1 - spread to 1 + spread in
 // even steps on both sides of 1, never 1 itself.
 inline constexpr double kRobustnessSpread = 0.025;

@@ -16,14 +16,7 @@ cd "$tmp"
 "$bin/ahhs-replay" --genome p.json --scenario pendulum --duration 2 --log p.lcm >/dev/null ||
   fail "replay"
 
-# start_view ARGS...: ahhs-view on a free port; sets $view (pid) and $port.
-start_view() {
-  "$bin/ahhs-view" --port 0 "$@" >view.out 2>&1 &
-  view=$!
-  for _ in $(seq 100); do grep -q '^open http' view.out && break; sleep 0.05; done
-  port=$(sed -n 's|^open http://127.0.0.1:\([0-9]*\)/ .*|\1|p' view.out)
-  [[ -n "$port" ]] || fail "ahhs-view did not start: $(cat view.out)"
-}
+source "$AHHS_SOURCE_DIR/tests/tools/view_lib.sh"
 probe() { /usr/bin/python3 "$AHHS_SOURCE_DIR/tests/tools/view_probe.py" "$port" "$@"; }
 
 echo "== 1. Origin and Host"

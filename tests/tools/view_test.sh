@@ -15,14 +15,7 @@ url='udpm://239.255.76.67:7681?ttl=0&recv_buf_size=4194304'
 # js EXPR: a JSON value from the page at $page (ahhs-capture probe).
 js() { "$bin/ahhs-capture" probe "$page" --eval "$1" "${@:2}"; }
 field() { python3 -c "import json,sys; print(json.load(sys.stdin)$1)"; }
-# start_view ARGS...: ahhs-view on a free port; sets $view (pid) and $page (URL).
-start_view() {
-  "$bin/ahhs-view" --port 0 "$@" >view.out 2>&1 &
-  view=$!
-  for _ in $(seq 100); do grep -q '^open http' view.out && break; sleep 0.05; done
-  page=$(sed -n 's/^open \(http[^ ]*\) .*/\1/p' view.out)
-  [[ -n "$page" ]] || fail "ahhs-view did not start: $(cat view.out)"
-}
+source "$AHHS_SOURCE_DIR/tests/tools/view_lib.sh"
 
 echo "== 1. a replay log in the browser: bodies, ticks, seek, step, speed, module colours"
 "$bin/ahhs-replay" --genome "$fixed" --scenario gait --joints fixed --log fixed.lcm >/dev/null ||

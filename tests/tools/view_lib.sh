@@ -1,0 +1,10 @@
+# The viewer tests' shared helper (sourced after tests/lib.sh; runs in the test's folder).
+# start_view ARGS...: ahhs-view on a free port; sets $view (pid), $page (URL) and $port.
+start_view() {
+  "$bin/ahhs-view" --port 0 "$@" >view.out 2>&1 &
+  view=$!
+  for _ in $(seq 100); do grep -q '^open http' view.out && break; sleep 0.05; done
+  page=$(sed -n 's/^open \(http[^ ]*\) .*/\1/p' view.out)
+  [[ -n "$page" ]] || fail "ahhs-view did not start: $(cat view.out)"
+  port=$(sed -n 's|^http://127.0.0.1:\([0-9]*\)/$|\1|p' <<<"$page")
+}

@@ -26,6 +26,7 @@
 #include "evolver/farm/farm_evaluator.h"
 #include "evolver/store/run_store.h"
 #include "modules/core/random.h"
+#include "sim/node/envelope_options.h"
 
 namespace ev = ahhs::evolver;
 using Clock = std::chrono::steady_clock;
@@ -87,11 +88,15 @@ class Progress {
   }
 
   void Generation(const ev::GenerationRecord& r) {
-    char line[200];
+    char line[240];
+    const int done = r.generation + 1 - first_;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    const int left = generations_ - 1 - r.generation;
     std::snprintf(line, sizeof line,
-                  "generation %d/%d: best %.6f  mean %.6f  median %.6f  worst %.6f  (%.1f s)",
+                  "generation %d/%d: best %.6f  mean %.6f  median %.6f  worst %.6f  (%.1f s%s%s)",
                   r.generation, generations_ - 1, r.stats.best, r.stats.mean, r.stats.median,
-                  r.stats.worst, r.wall_time);
+                  r.stats.worst, r.wall_time, left > 0 && done > 0 ? ", ETA " : "",
+                  left > 0 && done > 0 ? FormatDuration(elapsed / done * left).c_str() : "");
     Clear();
     std::printf("%s\n", line);
     std::fflush(stdout);
@@ -127,7 +132,9 @@ struct Options {
   std::string scenario = "gait", joints = "damped", variant = "ahhs2", out_dir, resume_dir,
               arena = "direct", url = ahhs::bus::kDefaultLcmUrl, mutation_profile = "paper";
   int modules = 5, hormones = 5, rules = 30, population = 20, generations = 200, elitism = 1,
-      workers = -1;
+      workers = -1, trials = 1;
+  std::string aggregate = "mean";
+  ahhs::sim::EnvelopeOptions envelope;
   double duration = 0, mutation_rate = 0.15, mutation_max_change = 0.1, crossover_rate = 0.05;
   std::uint64_t seed = 1;
   double job_deadline = 300, worker_wait = 60;
@@ -167,6 +174,17 @@ void AddOptions(CLI::App& app, Options* o) {
       ->capture_default_str();
   app.add_option("--crossover-rate", o->crossover_rate, "two-point crossover rate")
       ->capture_default_str();
+  app.add_option("--trials", o->trials,
+                 "episodes per individual and generation, each with a fresh seed (robust "
+                 "evolution; the paper: 1)")
+      ->check(CLI::Range(1, ev::kMaxTrials))
+      ->capture_default_str();
+  app.add_option("--aggregate", o->aggregate, "an individual's fitness from its trials")
+      ->check(CLI::IsMember({"mean", "median", "min"}))
+      ->capture_default_str();
+  o->envelope.Add(app,
+                  "envelope of noise every episode is perturbed with: none (the paper), paper or "
+                  "wide (docs/scenarios.md)");
   app.add_option("--seed", o->seed, "run seed (every random draw of the run derives from it)")
       ->check(ahhs::modules::SeedTextError)
       ->capture_default_str();
@@ -203,11 +221,16 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
     for (const char* name :
          {"--scenario", "--joints", "--modules", "--duration", "--variant", "--hormones", "--rules",
           "--population", "--generations", "--elitism", "--mutation-rate", "--mutation-max-change",
-          "--mutation-profile", "--crossover-rate", "--seed", "--overwrite"})
+          "--mutation-profile", "--crossover-rate", "--seed", "--overwrite", "--trials",
+          "--aggregate"})
       if (app.count(name))
         throw std::invalid_argument(std::string(name) +
                                     " cannot be given with --resume: a resumed run keeps "
                                     "its stored configuration");
+    if (o.envelope.given())
+      throw std::invalid_argument(
+          "--envelope cannot be given with --resume: a resumed run keeps its stored "
+          "configuration");
     store = ev::RunStore::Open(o.resume_dir,
                                o.show_config ? ev::StoreAccess::kRead : ev::StoreAccess::kWrite);
     *config = ev::ConfigFromJson(store->config());
@@ -232,6 +255,7 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
     config->scenario =
         ahhs::sim::MakeScenarioConfig(ahhs::sim::ParseScenarioKind(o.scenario),
                                       ahhs::sim::ParseJoints(o.joints), o.modules, o.duration);
+    config->scenario.envelope = o.envelope.Resolve();
     config->variant =
         o.variant == "ahhs1" ? ahhs::modules::Variant::kAhhs1 : ahhs::modules::Variant::kAhhs2;
     config->hormones = o.hormones;
@@ -243,6 +267,8 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
     config->ga.mutation.max_change = o.mutation_max_change;
     config->ga.mutation.profile = ahhs::modules::ParseMutationProfile(o.mutation_profile);
     config->ga.crossover_rate = o.crossover_rate;
+    config->ga.trials = o.trials;
+    config->ga.aggregate = ev::ParseAggregate(o.aggregate);
     config->seed = o.seed;
     if (o.duration < 0) throw std::invalid_argument("--duration must not be negative");
     const std::string error = ev::CheckEvolveConfig(*config);
@@ -292,6 +318,7 @@ ev::FarmOptions FarmOptionsFor(const Options& o, const ev::EvolveConfig& config,
   farm.run = wire_run;
   farm.config = config.scenario;
   farm.population = config.ga.population;
+  farm.trials = config.ga.trials;
   farm.lease.job_deadline =
       std::chrono::milliseconds(static_cast<std::int64_t>(o.job_deadline * 1000));
   farm.no_worker_timeout =
@@ -359,9 +386,15 @@ int main(int argc, char** argv) {
 
   Progress progress(first, config.ga.generations);
   std::printf("run directory: %s\n", dir.c_str());
+  std::string robust;
+  if (config.ga.trials > 1 || !config.scenario.envelope.none())
+    robust = ", " + std::to_string(config.ga.trials) + " trial" +
+             (config.ga.trials > 1 ? std::string("s (") + ev::AggregateName(config.ga.aggregate) + ")"
+                                   : std::string()) +
+             ", envelope " + ahhs::sim::EnvelopeName(config.scenario.envelope);
   std::printf(
       "%s %s, %s %d hormones x %d rules, population %d, "
-      "generations %d, seed %llu%s\n",
+      "generations %d%s, seed %llu%s\n",
       ahhs::sim::ScenarioName(config.scenario.kind),
       config.scenario.kind == ahhs::sim::ScenarioKind::kGait
           ? (std::string(ahhs::sim::JointsName(config.scenario.joints)) + " docking, " +
@@ -369,7 +402,8 @@ int main(int argc, char** argv) {
                 .c_str()
           : "cart and pole",
       ahhs::modules::VariantName(config.variant), config.hormones, config.rules,
-      config.ga.population, config.ga.generations, static_cast<unsigned long long>(config.seed),
+      config.ga.population, config.ga.generations, robust.c_str(),
+      static_cast<unsigned long long>(config.seed),
       first > 0 ? (", resuming at generation " + std::to_string(first)).c_str() : "");
   std::printf("workers: %d local (%s arena)%s; more: %s/ahhs-worker --lcm-url '%s' --run %s\n",
               static_cast<int>(local.size()), options.arena.c_str(),

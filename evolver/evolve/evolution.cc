@@ -2,10 +2,16 @@
 
 #include <chrono>
 #include <stdexcept>
+#include <string_view>
 
 namespace ahhs::evolver {
 
 using nlohmann::json;
+
+namespace {
+// EnvelopeKeys() names "envelope.friction", ...; the config's envelope object "friction", ...
+constexpr std::string_view kEnvelopePrefix = "envelope.";
+}  // namespace
 
 modules::Shape EvolveConfig::shape() const {
   auto probe = sim::MakeScenario(scenario);
@@ -15,6 +21,8 @@ modules::Shape EvolveConfig::shape() const {
 std::string CheckEvolveConfig(const EvolveConfig& c) {
   std::string e = sim::CheckConfig(c.scenario);
   if (!e.empty()) return e;
+  e = sim::CheckEnvelope(c.scenario.envelope);
+  if (!e.empty()) return "envelope: " + e;
   if (c.hormones < 1 || c.hormones > modules::Ranges::kMaxHormones)
     return "hormones must be in [1, " + std::to_string(modules::Ranges::kMaxHormones) + "]";
   if (c.rules < 1 || c.rules > modules::Ranges::kMaxRules)
@@ -32,6 +40,12 @@ json ConfigToJson(const EvolveConfig& c) {
            {"rules", c.rules},
            {"seed", c.seed}};
   GaParamsToJson(c.ga, &doc);
+  if (!c.scenario.envelope.none()) {  // a paper run's config is what it always was
+    json envelope = json::object();
+    for (const auto& k : sim::EnvelopeKeys())
+      envelope[std::string(k.name).substr(kEnvelopePrefix.size())] = c.scenario.envelope.*k.field;
+    doc["envelope"] = envelope;
+  }
   return doc;
 }
 
@@ -50,6 +64,19 @@ EvolveConfig ConfigFromJson(const json& doc) {
     c.rules = doc.at("rules").get<int>();
     c.ga = GaParamsFromJson(doc);
     c.seed = doc.at("seed").get<std::uint64_t>();
+    if (doc.contains("envelope")) {
+      const json& envelope = doc.at("envelope");
+      if (!envelope.is_object()) throw std::invalid_argument("envelope must be an object");
+      for (const auto& [key, value] : envelope.items()) {
+        bool known = false;
+        for (const auto& k : sim::EnvelopeKeys())
+          if (std::string(k.name).substr(kEnvelopePrefix.size()) == key) {
+            c.scenario.envelope.*k.field = value.get<double>();
+            known = true;
+          }
+        if (!known) throw std::invalid_argument("unknown envelope key '" + key + "'");
+      }
+    }
   } catch (const json::exception& e) {
     throw std::invalid_argument(std::string("run config: ") + e.what());
   }
@@ -83,8 +110,10 @@ bool RunEvolution(RunStore& store, const EvolveConfig& config, FitnessEvaluator&
     const double start = seconds();
     const std::vector<modules::Genome> parents = std::move(population);
     std::vector<EvaluationJob> jobs;
-    const std::vector<Evaluation> results = StepGeneration(
-        config.shape(), ga, config.seed, g, parents, fitness, evaluator, &population, &jobs);
+    std::vector<Evaluation> trials;
+    const std::vector<Evaluation> results =
+        StepGeneration(config.shape(), ga, config.seed, g, parents, fitness, evaluator,
+                       &population, &jobs, &trials);
     std::vector<IndividualRecord> records;
     fitness.clear();
     for (int i = 0; i < ga.population; ++i) {
@@ -94,8 +123,13 @@ bool RunEvolution(RunStore& store, const EvolveConfig& config, FitnessEvaluator&
       r.index = i;
       r.genome = population[k];
       r.elite = g > 0 && i < ga.elitism;
-      r.eval_seed = jobs[k].seed;
+      r.eval_seed = jobs[k * static_cast<std::size_t>(ga.trials)].seed;
       r.evaluation = results[k];
+      if (ga.trials > 1)
+        for (int t = 0; t < ga.trials; ++t) {
+          const std::size_t j = k * static_cast<std::size_t>(ga.trials) + static_cast<std::size_t>(t);
+          r.trials.push_back({t, jobs[j].seed, trials[j]});
+        }
       fitness.push_back(results[k].fitness);
       records.push_back(std::move(r));
     }

@@ -80,7 +80,9 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
   Batch batch(jobs, options_.lease);
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     const std::int64_t id =
-        static_cast<std::int64_t>(jobs[k].generation) * options_.population + jobs[k].index;
+        (static_cast<std::int64_t>(jobs[k].generation) * options_.population + jobs[k].index) *
+            options_.trials +
+        jobs[k].trial;
     batch.slot_of[id] = k;
     batch.table.AddJob(id);
   }

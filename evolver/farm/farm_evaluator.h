@@ -39,7 +39,8 @@ class FarmInterrupted : public std::runtime_error {
 struct FarmOptions {
   std::string run;  // run id on the wire
   sim::ScenarioConfig config;
-  int population = 1;  // job id = generation * population + index
+  int population = 1;  // job id = (generation * population + index) * trials + trial
+  int trials = 1;
   LeaseOptions lease;
   // A worker that returns this many invalid results gets no more jobs from this evolver.
   int quarantine_after = 3;

@@ -10,6 +10,45 @@ namespace ahhs::evolver {
 using modules::Genome;
 using modules::Rng;
 
+const char* AggregateName(Aggregate a) {
+  switch (a) {
+    case Aggregate::kMean:
+      return "mean";
+    case Aggregate::kMedian:
+      return "median";
+    case Aggregate::kMin:
+      return "min";
+  }
+  return "?";
+}
+
+Aggregate ParseAggregate(const std::string& name) {
+  if (name == "mean") return Aggregate::kMean;
+  if (name == "median") return Aggregate::kMedian;
+  if (name == "min") return Aggregate::kMin;
+  throw std::invalid_argument("aggregate must be mean, median or min, not '" + name + "'");
+}
+
+double AggregateFitness(Aggregate a, const std::vector<double>& trials) {
+  if (trials.empty()) throw std::invalid_argument("AggregateFitness: no trials");
+  switch (a) {
+    case Aggregate::kMean: {
+      double sum = 0;
+      for (double f : trials) sum += f;
+      return sum / static_cast<double>(trials.size());
+    }
+    case Aggregate::kMedian: {
+      std::vector<double> sorted = trials;
+      std::sort(sorted.begin(), sorted.end());
+      const std::size_t n = sorted.size();
+      return n % 2 == 1 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+    }
+    case Aggregate::kMin:
+      return *std::min_element(trials.begin(), trials.end());
+  }
+  return 0;
+}
+
 void GaParamsToJson(const GaParams& p, nlohmann::json* doc) {
   (*doc)["population"] = p.population;
   (*doc)["generations"] = p.generations;
@@ -19,6 +58,10 @@ void GaParamsToJson(const GaParams& p, nlohmann::json* doc) {
   (*doc)["mutation_profile"] = modules::MutationProfileName(p.mutation.profile);
   (*doc)["crossover_rate"] = p.crossover_rate;
   (*doc)["selection_epsilon"] = p.selection_epsilon;
+  if (p.trials != 1) {
+    (*doc)["trials"] = p.trials;
+    (*doc)["aggregate"] = AggregateName(p.aggregate);
+  }
 }
 
 GaParams GaParamsFromJson(const nlohmann::json& doc) {
@@ -34,6 +77,8 @@ GaParams GaParamsFromJson(const nlohmann::json& doc) {
                 std::string(modules::MutationProfileName(modules::MutationProfile::kFineDoses))));
   p.crossover_rate = doc.at("crossover_rate").get<double>();
   p.selection_epsilon = doc.at("selection_epsilon").get<double>();
+  p.trials = doc.value("trials", 1);
+  if (doc.contains("aggregate")) p.aggregate = ParseAggregate(doc.at("aggregate").get<std::string>());
   return p;
 }
 
@@ -48,12 +93,21 @@ std::string CheckGaParams(const GaParams& p) {
   if (!(p.crossover_rate >= 0 && p.crossover_rate <= 1)) return "crossover rate must be in [0, 1]";
   if (!(p.selection_epsilon > 0 && std::isfinite(p.selection_epsilon)))
     return "selection epsilon must be positive";
+  if (p.trials < 1 || p.trials > kMaxTrials)
+    return "trials must be in [1, " + std::to_string(kMaxTrials) + "]";
   return "";
 }
 
 std::uint64_t EvaluationSeed(std::uint64_t run_seed, int generation, int index) {
   return modules::DeriveSeed(run_seed, {kEvalStream, static_cast<std::uint64_t>(generation),
                                         static_cast<std::uint64_t>(index)});
+}
+
+std::uint64_t TrialSeed(std::uint64_t run_seed, int generation, int index, int trial) {
+  if (trial == 0) return EvaluationSeed(run_seed, generation, index);
+  return modules::DeriveSeed(run_seed, {kEvalStream, static_cast<std::uint64_t>(generation),
+                                        static_cast<std::uint64_t>(index),
+                                        static_cast<std::uint64_t>(trial)});
 }
 
 std::vector<Genome> InitialPopulation(const modules::Shape& shape, const GaParams& params,
@@ -143,17 +197,39 @@ std::vector<Evaluation> StepGeneration(const modules::Shape& shape, const GaPara
                                        const std::vector<Genome>& parents,
                                        const std::vector<double>& fitness,
                                        FitnessEvaluator& evaluator, std::vector<Genome>* population,
-                                       std::vector<EvaluationJob>* jobs) {
+                                       std::vector<EvaluationJob>* jobs,
+                                       std::vector<Evaluation>* trial_results) {
   *population = g == 0 ? InitialPopulation(shape, params, run_seed)
                        : Breed(parents, fitness, params, run_seed, g);
+  const int k = params.trials;
   jobs->clear();
   for (int i = 0; i < params.population; ++i)
-    jobs->push_back(
-        {g, i, &(*population)[static_cast<std::size_t>(i)], EvaluationSeed(run_seed, g, i)});
+    for (int t = 0; t < k; ++t)
+      jobs->push_back({g, i, t, &(*population)[static_cast<std::size_t>(i)],
+                       TrialSeed(run_seed, g, i, t)});
   std::vector<Evaluation> results = evaluator.Evaluate(*jobs);
   if (results.size() != jobs->size())
     throw std::runtime_error("the evaluator returned the wrong number of results");
-  return results;
+  if (trial_results) *trial_results = results;
+  if (k == 1) return results;
+  std::vector<Evaluation> individuals;
+  for (int i = 0; i < params.population; ++i) {
+    Evaluation sum;
+    std::vector<double> scores;
+    for (int t = 0; t < k; ++t) {
+      const Evaluation& e = results[static_cast<std::size_t>(i * k + t)];
+      scores.push_back(e.fitness);
+      sum.cost += e.cost;
+      sum.wall_time += e.wall_time;
+      sum.attempt = std::max(sum.attempt, e.attempt);
+      if (t == 0) sum.worker = e.worker;
+      if (sum.message.empty() && !e.message.empty())
+        sum.message = "trial " + std::to_string(t) + ": " + e.message;
+    }
+    sum.fitness = AggregateFitness(params.aggregate, scores);
+    individuals.push_back(std::move(sum));
+  }
+  return individuals;
 }
 
 std::vector<GenerationStats> RunGa(const modules::Shape& shape, const GaParams& params,

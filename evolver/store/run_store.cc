@@ -30,6 +30,12 @@ namespace {
 constexpr const char* kDatabaseName = "run.sqlite";
 constexpr const char* kFormatName = "ahhs-run";
 constexpr const char* kLockName = "run.lock";
+// Version 4's table: every trial of an individual evaluated several times.
+constexpr const char* kTrialsTable =
+    "CREATE TABLE IF NOT EXISTS trials(generation INTEGER NOT NULL, idx INTEGER NOT NULL,"
+    "  trial INTEGER NOT NULL, seed INTEGER NOT NULL, fitness REAL NOT NULL,"
+    "  cost REAL NOT NULL, worker TEXT NOT NULL, attempt INTEGER NOT NULL,"
+    "  wall_time REAL NOT NULL, message TEXT NOT NULL, PRIMARY KEY(generation, idx, trial));";
 
 // Takes the write lock of a run directory; returns its descriptor, -1 when another process holds
 // it. Throws when the lock file cannot be made.
@@ -321,6 +327,7 @@ std::unique_ptr<RunStore> RunStore::Create(const std::string& dir, const std::st
       "  worker TEXT NOT NULL, attempt INTEGER NOT NULL, wall_time REAL NOT NULL,"
       "  message TEXT NOT NULL, PRIMARY KEY(generation, idx));"
       "CREATE TABLE chain(generation INTEGER PRIMARY KEY, digest TEXT NOT NULL);");
+  store->Exec(kTrialsTable);
   {
     store->Exec("BEGIN");
     Statement put(db, "INSERT INTO run(key, value) VALUES(?, ?)");
@@ -389,7 +396,8 @@ void RunStore::LoadRunTable() {
   if (values.value("format", "") != kFormatName)
     throw RunStoreError("the database is not an ahhs run");
   const std::string version = values.value("format_version", "");
-  if (version != "1" && version != "2" && version != std::to_string(kFormatVersion))
+  if (version != "1" && version != "2" && version != "3" &&
+      version != std::to_string(kFormatVersion))
     throw RunStoreError("run format version " + (version.empty() ? "?" : version) +
                         " is not supported (this build reads versions 1 to " +
                         std::to_string(kFormatVersion) + ")");
@@ -526,6 +534,33 @@ std::vector<IndividualRecord> RunStore::LoadIndividuals(int generation, int inde
     r.evaluation.message = get.Text(10);
     out.push_back(std::move(r));
   }
+  if (HasTrials() && !out.empty()) {
+    Statement trials(db_,
+                     "SELECT idx, trial, seed, fitness, cost, worker, attempt, wall_time, message "
+                     "FROM trials WHERE generation = ? AND (? < 0 OR idx = ?) ORDER BY idx, trial");
+    trials.Bind(1, static_cast<std::int64_t>(generation))
+        .Bind(2, static_cast<std::int64_t>(index))
+        .Bind(3, static_cast<std::int64_t>(index));
+    std::size_t k = 0;
+    while (trials.Step()) {
+      const int idx = static_cast<int>(trials.Int(0));
+      while (k < out.size() && out[k].index < idx) ++k;
+      if (k == out.size() || out[k].index != idx)
+        throw RunStoreError(dir_ + ": generation " + std::to_string(generation) +
+                            " has a trial of individual " + std::to_string(idx) +
+                            ", which is not stored: the store is damaged");
+      TrialRecord t;
+      t.trial = static_cast<int>(trials.Int(1));
+      t.seed = FromSql(trials.Int(2));
+      t.evaluation.fitness = trials.Real(3);
+      t.evaluation.cost = trials.Real(4);
+      t.evaluation.worker = trials.Text(5);
+      t.evaluation.attempt = static_cast<int>(trials.Int(6));
+      t.evaluation.wall_time = trials.Real(7);
+      t.evaluation.message = trials.Text(8);
+      out[k].trials.push_back(std::move(t));
+    }
+  }
   return out;
 }
 
@@ -588,6 +623,29 @@ void RunStore::CommitGeneration(const GenerationRecord& record,
           .Bind(11, r.evaluation.wall_time)
           .Bind(12, r.evaluation.message)
           .Run();
+    }
+    bool any_trials = false;
+    for (const auto& r : individuals) any_trials = any_trials || !r.trials.empty();
+    if (any_trials && !HasTrials())
+      throw RunStoreError(dir_ + ": a run of store format " + std::to_string(format_version_) +
+                          " cannot hold trials: start a new run");
+    if (any_trials) {
+      Statement trial(db_,
+                      "INSERT INTO trials(generation, idx, trial, seed, fitness, cost, worker, "
+                      "attempt, wall_time, message) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      for (const auto& r : individuals)
+        for (const auto& t : r.trials)
+          trial.Bind(1, static_cast<std::int64_t>(record.generation))
+              .Bind(2, static_cast<std::int64_t>(r.index))
+              .Bind(3, static_cast<std::int64_t>(t.trial))
+              .Bind(4, ToSql(t.seed))
+              .Bind(5, t.evaluation.fitness)
+              .Bind(6, t.evaluation.cost)
+              .Bind(7, t.evaluation.worker)
+              .Bind(8, static_cast<std::int64_t>(t.evaluation.attempt))
+              .Bind(9, t.evaluation.wall_time)
+              .Bind(10, t.evaluation.message)
+              .Run();
     }
     if (Chained()) {
       std::string previous;
@@ -708,6 +766,13 @@ std::string RunStore::GenerationDigest(int generation, const std::string& previo
                         "WHERE generation = ? ORDER BY idx");
   individuals.Bind(1, static_cast<std::int64_t>(generation));
   digest.AddRows(individuals);
+  if (HasTrials() && config_.value("trials", 1) > 1) {  // with one trial: version 3's digest
+    Statement trials(db_,
+                     "SELECT generation, idx, trial, seed, fitness, cost, worker, attempt, "
+                     "wall_time, message FROM trials WHERE generation = ? ORDER BY idx, trial");
+    trials.Bind(1, static_cast<std::int64_t>(generation));
+    digest.AddRows(trials);
+  }
   return digest.Hex();
 }
 
@@ -715,6 +780,8 @@ void RunStore::RebuildChain() {
   Exec(
       "CREATE TABLE IF NOT EXISTS chain(generation INTEGER PRIMARY KEY, digest TEXT NOT NULL);"
       "DELETE FROM chain;");
+  Exec(kTrialsTable);
+  format_version_ = kFormatVersion;  // the digests below are this version's
   Statement add(db_, "INSERT INTO chain(generation, digest) VALUES(?, ?)");
   std::string previous = RunTableDigest();
   for (const auto& g : LoadGenerationRecords()) {
@@ -749,6 +816,14 @@ int RunStore::VerifyChain() const {
                      "(SELECT generation FROM generations)");
     if (orphan.Step() && !orphan.IsNull(0))
       throw RunStoreError(file + ": individuals of generation " + std::to_string(orphan.Int(0)) +
+                          " belong to no stored generation: the store is damaged");
+  }
+  if (HasTrials()) {
+    Statement orphan(db_,
+                     "SELECT MIN(generation) FROM trials WHERE generation NOT IN "
+                     "(SELECT generation FROM generations)");
+    if (orphan.Step() && !orphan.IsNull(0))
+      throw RunStoreError(file + ": trials of generation " + std::to_string(orphan.Int(0)) +
                           " belong to no stored generation: the store is damaged");
   }
   if (!Chained()) return 0;

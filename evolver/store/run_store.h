@@ -1,7 +1,8 @@
 // The run directory of one evolution (docs/evolution.md, "Run directory"):
 //   run.sqlite            SQLite in WAL mode: run config and seeds, every individual of every
-//                         generation (genome, fitness, evaluation seed, worker, timings), the
-//                         statistics of every generation, the sessions (start and resumes).
+//                         generation (genome, fitness, evaluation seed, worker, timings), every
+//                         trial of an individual evaluated several times (seed, fitness, worker,
+//                         timings), the statistics of every generation, the sessions.
 //                         One transaction per generation: a killed run loses at most the
 //                         generation in progress and resumes from the last committed one.
 //                         Each generation carries a SHA-256 digest of its rows chained to the
@@ -35,13 +36,21 @@ class RunStoreError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// One episode of an individual evaluated on several trials (robust evolution).
+struct TrialRecord {
+  int trial = 0;
+  std::uint64_t seed = 0;
+  Evaluation evaluation;
+};
+
 struct IndividualRecord {
   int generation = 0;
   int index = 0;
   modules::Genome genome;
   bool elite = false;  // copied unchanged from the previous generation
-  std::uint64_t eval_seed = 0;
-  Evaluation evaluation;
+  std::uint64_t eval_seed = 0;  // the first trial's
+  Evaluation evaluation;        // with several trials: their aggregate (ga.h, StepGeneration)
+  std::vector<TrialRecord> trials;  // every trial when there are several; empty with one
 };
 
 struct GenerationRecord {
@@ -62,9 +71,12 @@ class RunStore {
   // (0, 20, 40, ...); the others keep each genome's hash, and reading one re-derives its
   // generation by breeding from the full generation before it (the GA is a pure function of a
   // generation's genomes and fitness and the run seed: evolver/ga/ga.h), checked against the
-  // hashes. Version 3 is version 2 with the digest chain. Version 1 (every genome in full, no
-  // chain) is read and resumed as it is; Open(kWrite) brings version 2 to 3, Compact 1 to 3.
-  static constexpr int kFormatVersion = 3;
+  // hashes. Version 3 is version 2 with the digest chain. Version 4 adds the trials table (one
+  // row per trial of an individual evaluated several times), chained with its generation.
+  // Version 1 (every genome in full, no chain) is read and resumed as it is; version 3 is read
+  // and resumed as it is (a version-3 run has one trial); Open(kWrite) brings version 2 to 4,
+  // Compact 1 to 4.
+  static constexpr int kFormatVersion = 4;
   static constexpr int kGenomeCheckpoint = 20;
 
   // Makes a new run directory. Refuses an existing non-empty directory unless `overwrite`, in
@@ -137,6 +149,7 @@ class RunStore {
   const std::vector<modules::Genome>& Rederive(int generation) const;
   bool StoresInFull(int generation) const;
   bool Chained() const { return format_version_ >= 3; }
+  bool HasTrials() const { return format_version_ >= 4; }
   // The digest of `generation`'s rows after `previous` (the run table's digest for generation 0).
   std::string GenerationDigest(int generation, const std::string& previous) const;
   std::string RunTableDigest() const;

@@ -42,7 +42,7 @@ struct Batch {
     p.population = n;
     genomes = InitialPopulation({modules::Variant::kAhhs2, 3, 5, 10, 2}, p, 77);
     for (int i = 0; i < n; ++i)
-      jobs.push_back({2, i, &genomes[static_cast<std::size_t>(i)], EvaluationSeed(77, 2, i)});
+      jobs.push_back({2, i, 0, &genomes[static_cast<std::size_t>(i)], EvaluationSeed(77, 2, i)});
   }
   void CheckResults(const std::vector<Evaluation>& results) const {
     REQUIRE(results.size() == jobs.size());
@@ -372,7 +372,7 @@ struct BigBatch {
     p.population = n;
     genomes = InitialPopulation({modules::Variant::kAhhs1, 5, 300, 4, 2}, p, 78);
     for (int i = 0; i < n; ++i)
-      jobs.push_back({0, i, &genomes[static_cast<std::size_t>(i)], EvaluationSeed(78, 0, i)});
+      jobs.push_back({0, i, 0, &genomes[static_cast<std::size_t>(i)], EvaluationSeed(78, 0, i)});
   }
 };
 }  // namespace

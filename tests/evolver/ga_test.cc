@@ -151,7 +151,7 @@ TEST_CASE("the GA climbs an analytic fitness function, with the paper's rates") 
   std::vector<modules::Genome> drifted;
   evolver::RunGa(SmallShape(), p, 42, flat, &drifted);
   std::vector<EvaluationJob> jobs;
-  for (auto& g : drifted) jobs.push_back({0, 0, &g, 0});
+  for (auto& g : drifted) jobs.push_back({0, 0, 0, &g, 0});
   double best_drift = -1e9;
   for (const auto& e : f.Evaluate(jobs)) best_drift = std::max(best_drift, e.fitness);
   CHECK(best_drift < stats.back().best - 1.0);
@@ -185,4 +185,71 @@ TEST_CASE("GA parameters are checked") {
   p = {};
   p.crossover_rate = -0.1;
   CHECK_THAT(evolver::CheckGaParams(p), Catch::Contains("crossover"));
+}
+
+TEST_CASE("trial seeds: trial 0 is the paper's evaluation seed, all others are fresh") {
+  std::set<std::uint64_t> seen;
+  for (int g = 0; g < 4; ++g)
+    for (int i = 0; i < 6; ++i) {
+      CHECK(evolver::TrialSeed(5, g, i, 0) == evolver::EvaluationSeed(5, g, i));
+      for (int t = 0; t < 5; ++t) seen.insert(evolver::TrialSeed(5, g, i, t));
+    }
+  CHECK(seen.size() == 4 * 6 * 5);
+}
+
+TEST_CASE("an individual's fitness is the mean, median or min of its trials") {
+  using evolver::Aggregate;
+  const std::vector<double> odd{0.5, 2.0, -1.0};
+  CHECK(evolver::AggregateFitness(Aggregate::kMean, odd) == 0.5);
+  CHECK(evolver::AggregateFitness(Aggregate::kMedian, odd) == 0.5);
+  CHECK(evolver::AggregateFitness(Aggregate::kMin, odd) == -1.0);
+  const std::vector<double> even{4.0, 1.0, 3.0, 2.0};
+  CHECK(evolver::AggregateFitness(Aggregate::kMean, even) == 2.5);
+  CHECK(evolver::AggregateFitness(Aggregate::kMedian, even) == 2.5);
+  CHECK(evolver::AggregateFitness(Aggregate::kMin, even) == 1.0);
+  CHECK_THROWS(evolver::AggregateFitness(Aggregate::kMean, {}));
+  CHECK(evolver::ParseAggregate("median") == Aggregate::kMedian);
+  CHECK_THROWS_WITH(evolver::ParseAggregate("max"), Catch::Contains("mean, median or min"));
+}
+
+TEST_CASE("with k trials every individual, the elite too, runs k jobs with fresh seeds") {
+  GaParams p;
+  p.population = 4;
+  p.generations = 3;
+  p.trials = 3;
+  p.aggregate = evolver::Aggregate::kMin;
+  SeedEcho f;
+  std::vector<modules::Genome> population;
+  std::vector<double> fitness;
+  evolver::RunGa(SmallShape(), p, 9, f, &population, &fitness);
+  REQUIRE(f.seeds.size() == 3 * 4 * 3);
+  // Job order: generation, individual, trial.
+  CHECK(f.seeds[0] == evolver::TrialSeed(9, 0, 0, 0));
+  CHECK(f.seeds[1] == evolver::TrialSeed(9, 0, 0, 1));
+  CHECK(f.seeds[3 * 4 + 3 * 2 + 1] == evolver::TrialSeed(9, 1, 2, 1));
+  // The last generation's fitness is each individual's worst trial (seed % 1000).
+  for (int i = 0; i < 4; ++i) {
+    double worst = 1e9;
+    for (int t = 0; t < 3; ++t)
+      worst = std::min(worst, static_cast<double>(evolver::TrialSeed(9, 2, i, t) % 1000));
+    CHECK(fitness[static_cast<std::size_t>(i)] == worst);
+  }
+}
+
+TEST_CASE("one trial is the paper's GA bit for bit, and trial 0 of k keeps its seed") {
+  GaParams one;
+  one.population = 5;
+  one.generations = 4;
+  DistanceToTarget a, b;
+  std::vector<modules::Genome> pa, pb;
+  std::vector<double> fa, fb;
+  const auto sa = evolver::RunGa(SmallShape(), one, 3, a, &pa, &fa);
+  GaParams three = one;
+  three.trials = 3;  // a seed-independent fitness: every trial scores the same
+  three.aggregate = evolver::Aggregate::kMedian;  // exact (a mean of three may round)
+  const auto sb = evolver::RunGa(SmallShape(), three, 3, b, &pb, &fb);
+  CHECK(b.calls == 3 * a.calls);
+  CHECK(fa == fb);
+  for (std::size_t i = 0; i < pa.size(); ++i)
+    CHECK(modules::GenomeHash(pa[i]) == modules::GenomeHash(pb[i]));
 }

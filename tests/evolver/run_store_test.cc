@@ -78,9 +78,13 @@ evolver::EvolveConfig SmallConfig() {
 std::string DumpRun(const RunStore& store) {
   std::ostringstream s;
   for (int g = 0; g <= store.LastGeneration(); ++g)
-    for (const auto& r : store.LoadGeneration(g))
+    for (const auto& r : store.LoadGeneration(g)) {
       s << g << ' ' << r.index << ' ' << modules::GenomeHash(r.genome) << ' ' << r.eval_seed << ' '
         << std::hexfloat << r.evaluation.fitness << ' ' << r.elite << '\n';
+      for (const auto& t : r.trials)
+        s << "  trial " << t.trial << ' ' << t.seed << ' ' << t.evaluation.fitness << ' '
+          << t.evaluation.cost << '\n';
+    }
   return s.str();
 }
 
@@ -175,7 +179,7 @@ void Sql(const std::string& dir, const std::string& sql) {
   sqlite3_close(db);
 }
 
-TEST_CASE("format 3 keeps every 20th generation's genomes and breeds the others again exactly") {
+TEST_CASE("format 4 keeps every 20th generation's genomes and breeds the others again exactly") {
   TempDir tmp;
   auto config = SmallConfig();
   config.ga.generations = 50;
@@ -183,7 +187,7 @@ TEST_CASE("format 3 keeps every 20th generation's genomes and breeds the others 
   auto whole = RunStore::Create(tmp.path + "/whole", "w", 123, evolver::ConfigToJson(config),
                                 "test-physics", false);
   REQUIRE(evolver::RunEvolution(*whole, config, f, 1));
-  CHECK(whole->format_version() == 3);
+  CHECK(whole->format_version() == 4);
   const std::string expected = DumpRun(*whole);  // every genome read back, checked by its hash
   whole.reset();
   // Only generations 0, 20 and 40 hold genomes.
@@ -227,7 +231,7 @@ TEST_CASE("format 3 keeps every 20th generation's genomes and breeds the others 
                         Catch::Contains("generations 0-19 are intact"));
 }
 
-TEST_CASE("a format-1 run is compacted to format 3 only when breeding gives it back exactly") {
+TEST_CASE("a format-1 run is compacted to format 4 only when breeding gives it back exactly") {
   TempDir tmp;
   auto config = SmallConfig();
   config.ga.generations = 45;
@@ -249,7 +253,7 @@ TEST_CASE("a format-1 run is compacted to format 3 only when breeding gives it b
   {
     auto store = RunStore::Open(dir);
     CHECK(store->Compact() > 0);
-    CHECK(store->format_version() == 3);
+    CHECK(store->format_version() == 4);
     CHECK(store->VerifyChain() == 45);  // chained as it was compacted
     CHECK(store->Compact() == 0);       // nothing left to do
   }
@@ -355,7 +359,7 @@ TEST_CASE("a version-2 run is chained when it is opened for writing, and resumes
   Sql(part, "DROP TABLE chain; UPDATE run SET value = '2' WHERE key = 'format_version'");
   REQUIRE(RunStore::Open(part, evolver::StoreAccess::kRead)->format_version() == 2);
   auto resumed = RunStore::Open(part);
-  CHECK(resumed->format_version() == 3);
+  CHECK(resumed->format_version() == 4);
   CHECK(resumed->VerifyChain() == 4);
   REQUIRE(evolver::RunEvolution(*resumed, config, f, 2));
   CHECK(resumed->VerifyChain() == 8);
@@ -480,4 +484,119 @@ TEST_CASE("run configs round-trip through JSON and bad ones are refused") {
   bad = json;
   bad["variant"] = "ahhs3";
   CHECK_THROWS_WITH(evolver::ConfigFromJson(bad), Catch::Contains("variant"));
+}
+
+TEST_CASE("a run with k trials stores every trial's seed and fitness, chained, and resumes the same") {
+  TempDir tmp;
+  auto config = SmallConfig();
+  config.ga.trials = 3;
+  config.ga.aggregate = evolver::Aggregate::kMedian;
+  HashFitness f;
+  const std::string whole = tmp.path + "/whole", part = tmp.path + "/part";
+  {
+    auto store =
+        RunStore::Create(whole, "w", 123, evolver::ConfigToJson(config), "test-physics", false);
+    REQUIRE(evolver::RunEvolution(*store, config, f, 1));
+  }
+  auto done = RunStore::Open(whole, evolver::StoreAccess::kRead);
+  const auto gen2 = done->LoadGeneration(2);
+  for (const auto& r : gen2) {
+    REQUIRE(r.trials.size() == 3);
+    std::vector<double> scores;
+    for (int t = 0; t < 3; ++t) {
+      const auto& trial = r.trials[static_cast<std::size_t>(t)];
+      CHECK(trial.trial == t);
+      CHECK(trial.seed == evolver::TrialSeed(123, 2, r.index, t));
+      CHECK(trial.evaluation.worker == "test");
+      scores.push_back(trial.evaluation.fitness);
+    }
+    CHECK(r.eval_seed == r.trials[0].seed);
+    CHECK(r.evaluation.fitness == evolver::AggregateFitness(evolver::Aggregate::kMedian, scores));
+  }
+  // The elite is evaluated again with fresh seeds: its fitness is not the one it was bred with.
+  const auto gen1 = done->LoadGeneration(1);
+  const auto best1 = done->LoadGenerationRecords()[1].stats.best_index;
+  const auto& parent = gen1[static_cast<std::size_t>(best1)];
+  REQUIRE(gen2[0].elite);
+  REQUIRE(modules::GenomeHash(gen2[0].genome) == modules::GenomeHash(parent.genome));
+  CHECK(gen2[0].evaluation.fitness != parent.evaluation.fitness);
+  CHECK(gen2[0].trials[0].seed != parent.trials[0].seed);
+  CHECK(done->LoadIndividual(2, 3).trials.size() == 3);
+  // Stopped after generation 1 and resumed: the same rows, trials included.
+  {
+    auto store =
+        RunStore::Create(part, "w", 123, evolver::ConfigToJson(config), "test-physics", false);
+    evolver::EvolutionHooks hooks;
+    int committed = 0;
+    hooks.on_generation = [&](const evolver::GenerationRecord&) { ++committed; };
+    hooks.stop = [&] { return committed > 1; };
+    REQUIRE_FALSE(evolver::RunEvolution(*store, config, f, 1, hooks));
+  }
+  auto resumed = RunStore::Open(part);
+  REQUIRE(evolver::RunEvolution(*resumed, evolver::ConfigFromJson(resumed->config()), f, 2));
+  CHECK(DumpRun(*resumed) == DumpRun(*done));
+  // A trial changed afterwards breaks the chain.
+  resumed.reset();
+  Sql(part, "UPDATE trials SET fitness = fitness + 1e-9 WHERE generation = 3 AND idx = 1 AND "
+            "trial = 2");
+  CHECK_THROWS_WITH(RunStore::Open(part), Catch::Contains("generation 3 does not match"));
+}
+
+TEST_CASE("a format-3 run (one trial, no trials table) is read and resumed as it is") {
+  TempDir tmp;
+  auto config = SmallConfig();
+  HashFitness f;
+  const std::string whole = tmp.path + "/whole", part = tmp.path + "/part";
+  {
+    auto store =
+        RunStore::Create(whole, "r", 123, evolver::ConfigToJson(config), "test-physics", false);
+    REQUIRE(evolver::RunEvolution(*store, config, f, 1));
+  }
+  {
+    auto store =
+        RunStore::Create(part, "r", 123, evolver::ConfigToJson(config), "test-physics", false);
+    evolver::EvolutionHooks hooks;
+    int committed = 0;
+    hooks.on_generation = [&](const evolver::GenerationRecord&) { ++committed; };
+    hooks.stop = [&] { return committed > 2; };
+    REQUIRE_FALSE(evolver::RunEvolution(*store, config, f, 1, hooks));
+  }
+  // As the build before trials left it: no trials table, version 3, the same digests.
+  Sql(part, "DROP TABLE trials; UPDATE run SET value = '3' WHERE key = 'format_version'");
+  auto resumed = RunStore::Open(part);
+  CHECK(resumed->format_version() == 3);
+  CHECK(resumed->VerifyChain() == 3);
+  REQUIRE(evolver::RunEvolution(*resumed, config, f, 2));
+  CHECK(resumed->VerifyChain() == 6);
+  CHECK(DumpRun(*resumed) == DumpRun(*RunStore::Open(whole, evolver::StoreAccess::kRead)));
+}
+
+TEST_CASE("a run config keeps trials and the envelope, and a paper config has neither key") {
+  auto c = SmallConfig();
+  const auto paper = evolver::ConfigToJson(c);
+  CHECK_FALSE(paper.contains("trials"));
+  CHECK_FALSE(paper.contains("aggregate"));
+  CHECK_FALSE(paper.contains("envelope"));
+  c.ga.trials = 4;
+  c.ga.aggregate = evolver::Aggregate::kMin;
+  c.scenario.envelope = sim::EnvelopePreset("paper");
+  c.scenario.envelope.friction = 0.125;
+  const auto robust = evolver::ConfigToJson(c);
+  CHECK(robust.at("trials") == 4);
+  CHECK(robust.at("aggregate") == "min");
+  CHECK(robust.at("envelope").at("friction") == 0.125);
+  const auto back = evolver::ConfigFromJson(robust);
+  CHECK(back.scenario.envelope == c.scenario.envelope);
+  CHECK(back.ga.trials == 4);
+  CHECK(back.ga.aggregate == evolver::Aggregate::kMin);
+  CHECK(evolver::ConfigToJson(back) == robust);
+  auto bad = robust;
+  bad["envelope"]["frition"] = 0.1;
+  CHECK_THROWS_WITH(evolver::ConfigFromJson(bad), Catch::Contains("unknown envelope key 'frition'"));
+  bad = robust;
+  bad["envelope"]["mass"] = 2.0;
+  CHECK_THROWS_WITH(evolver::ConfigFromJson(bad), Catch::Contains("envelope"));
+  bad = robust;
+  bad["trials"] = 0;
+  CHECK_THROWS_WITH(evolver::ConfigFromJson(bad), Catch::Contains("trials"));
 }

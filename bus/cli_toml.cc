@@ -75,7 +75,9 @@ class StrictTomlConfig : public CLI::Config {
   // 2^63-1), FLOAT any number, TEXT a string.
   static std::string ValueText(const std::string& path, const CLI::Option& option,
                                const toml::node& node) {
-    const std::string type = option.get_type_name();
+    // "INT", or "INT:INT in [1 - 64]" for an option with a check: the type is before the colon.
+    const std::string full_type = option.get_type_name();
+    const std::string type = full_type.substr(0, full_type.find(':'));
     const bool flag = option.get_items_expected_max() == 0;
     std::optional<std::string> text;
     std::string want;

@@ -54,6 +54,11 @@ _ahhs_cleanup() {
 dump_run() {
   sqlite3 "$1/run.sqlite" "SELECT generation, idx, genome_hash, eval_seed, elite,
     printf('%!.17g', fitness), printf('%!.17g', cost) FROM individuals ORDER BY generation, idx"
+  # Every trial of a run that evaluates each individual several times (store format 4).
+  if [[ $(sqlite3 "$1/run.sqlite" "SELECT COUNT(*) FROM sqlite_master WHERE name = 'trials'") == 1 ]]; then
+    sqlite3 "$1/run.sqlite" "SELECT 'trial', generation, idx, trial, seed,
+      printf('%!.17g', fitness), printf('%!.17g', cost) FROM trials ORDER BY generation, idx, trial"
+  fi
 }
 
 # wait_for_file PATH: up to 4 s for PATH to appear.

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <thread>
 
@@ -20,10 +21,12 @@
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "evolver/arena/children.h"
+#include "evolver/arena/post_eval.h"
 #include "evolver/arena/process_arena.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/farm/arena_evaluator.h"
 #include "evolver/farm/farm_evaluator.h"
+#include "evolver/store/atomic_file.h"
 #include "evolver/store/run_store.h"
 #include "modules/core/random.h"
 #include "sim/node/envelope_options.h"
@@ -132,8 +135,8 @@ struct Options {
   std::string scenario = "gait", joints = "damped", variant = "ahhs2", out_dir, resume_dir,
               arena = "direct", url = ahhs::bus::kDefaultLcmUrl, mutation_profile = "paper";
   int modules = 5, hormones = 5, rules = 30, population = 20, generations = 200, elitism = 1,
-      workers = -1, trials = 1;
-  std::string aggregate = "mean";
+      workers = -1, trials = 1, post_eval = 0;
+  std::string aggregate = "mean", post_eval_envelope;
   ahhs::sim::EnvelopeOptions envelope;
   double duration = 0, mutation_rate = 0.15, mutation_max_change = 0.1, crossover_rate = 0.05;
   std::uint64_t seed = 1;
@@ -182,6 +185,15 @@ void AddOptions(CLI::App& app, Options* o) {
   app.add_option("--aggregate", o->aggregate, "an individual's fitness from its trials")
       ->check(CLI::IsMember({"mean", "median", "min"}))
       ->capture_default_str();
+  app.add_option("--post-eval", o->post_eval,
+                 "when the run ends, replay its best on N held-out episodes: median, quartiles, "
+                 "min and the share that succeeds, also in RUN/post-eval.json")
+      ->check(CLI::Range(0, ev::kMaxPostEval))
+      ->capture_default_str();
+  app.add_option("--post-eval-envelope", o->post_eval_envelope,
+                 "envelope of the held-out episodes (default: the run's, or paper for a run "
+                 "without one)")
+      ->check(CLI::IsMember({"none", "paper", "wide"}));
   o->envelope.Add(app,
                   "envelope of noise every episode is perturbed with: none (the paper), paper or "
                   "wide (docs/scenarios.md)");
@@ -222,7 +234,7 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
          {"--scenario", "--joints", "--modules", "--duration", "--variant", "--hormones", "--rules",
           "--population", "--generations", "--elitism", "--mutation-rate", "--mutation-max-change",
           "--mutation-profile", "--crossover-rate", "--seed", "--overwrite", "--trials",
-          "--aggregate"})
+          "--aggregate", "--post-eval", "--post-eval-envelope"})
       if (app.count(name))
         throw std::invalid_argument(std::string(name) +
                                     " cannot be given with --resume: a resumed run keeps "
@@ -269,6 +281,11 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
     config->ga.crossover_rate = o.crossover_rate;
     config->ga.trials = o.trials;
     config->ga.aggregate = ev::ParseAggregate(o.aggregate);
+    config->post_eval = o.post_eval;
+    config->post_eval_envelope =
+        !o.post_eval_envelope.empty()           ? ahhs::sim::EnvelopePreset(o.post_eval_envelope)
+        : config->scenario.envelope.none() ? ahhs::sim::EnvelopePreset("paper")
+                                                : config->scenario.envelope;
     config->seed = o.seed;
     if (o.duration < 0) throw std::invalid_argument("--duration must not be negative");
     const std::string error = ev::CheckEvolveConfig(*config);
@@ -305,11 +322,60 @@ void PrintSummary(const ev::RunStore& store, const ev::EvolveConfig& config) {
     std::snprintf(d, sizeof d, "%.17g", config.scenario.duration);
     replay += std::string(" --duration ") + d;
   }
+  replay += ahhs::sim::EnvelopeArguments(config.scenario.envelope);
   replay += " --genome " + store.dir() + "/best.json --seed " + std::to_string(best.eval_seed);
   std::printf("done: %d generations in %s\n", config.ga.generations, store.dir().c_str());
-  std::printf("best fitness: %.17g (generation %d, individual %d)\n", best.evaluation.fitness,
-              best.generation, best.index);
-  std::printf("replay the best genome: %s\n", replay.c_str());
+  if (best.trials.empty()) {
+    std::printf("best fitness: %.17g (generation %d, individual %d)\n", best.evaluation.fitness,
+                best.generation, best.index);
+    std::printf("replay the best genome: %s\n", replay.c_str());
+  } else {
+    std::printf("best fitness: %.17g (generation %d, individual %d; the %s of %zu trials)\n",
+                best.evaluation.fitness, best.generation, best.index,
+                ev::AggregateName(config.ga.aggregate), best.trials.size());
+    std::printf("replay the best genome's first trial (fitness %.17g): %s\n",
+                best.trials.front().evaluation.fitness, replay.c_str());
+  }
+}
+
+// The run's held-out post-evaluation (its config's post_eval episodes): printed, and kept in
+// RUN/post-eval.json, written once for the run's final best (a resume of a finished run that has
+// it only prints it again).
+void PostEvaluateBest(const ev::RunStore& store, const ev::EvolveConfig& config) {
+  const ev::IndividualRecord best = store.Best();
+  const std::string path = store.dir() + "/post-eval.json";
+  char hash[20];
+  std::snprintf(hash, sizeof hash, "%016llx",
+                static_cast<unsigned long long>(ahhs::modules::GenomeHash(best.genome)));
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(path, ec)) {
+    try {
+      std::ifstream in(path);
+      const auto doc = nlohmann::json::parse(in);
+      if (doc.at("genome_hash") == hash && doc.at("episodes") == config.post_eval) {
+        std::printf("%s\n", doc.at("description").get<std::string>().c_str());
+        return;
+      }
+    } catch (const std::exception&) {
+    }  // damaged or another best's: evaluated again below
+  }
+  std::printf("post-evaluating the best on %d held-out episodes ...\n", config.post_eval);
+  std::fflush(stdout);
+  ahhs::arena::EpisodeSpec spec;
+  spec.config = config.scenario;
+  spec.genome = best.genome;
+  spec.episode = 1;
+  const ahhs::arena::PostEvaluation p =
+      ahhs::arena::PostEvaluate(spec, config.post_eval_envelope, config.post_eval);
+  const std::string line = p.Describe(config.scenario.kind);
+  nlohmann::json doc = p.ToJson();
+  doc["description"] = line;
+  doc["generation"] = best.generation;
+  doc["individual"] = best.index;
+  doc["genome_hash"] = hash;
+  doc["training_fitness"] = best.evaluation.fitness;
+  ev::WriteFileAtomically(path, doc.dump(2) + "\n");
+  std::printf("%s\n", line.c_str());
 }
 
 ev::FarmOptions FarmOptionsFor(const Options& o, const ev::EvolveConfig& config,
@@ -469,6 +535,7 @@ int main(int argc, char** argv) {
 
   try {
     PrintSummary(*store, config);
+    if (config.post_eval > 0) PostEvaluateBest(*store, config);
   } catch (const std::exception& e) {
     std::cerr << "ahhs-evolve: " << e.what() << '\n';
     return ahhs::cli::kExitFailure;

@@ -10,6 +10,7 @@
 #include "evolver/arena/robustness.h"
 #include "modules/core/random.h"
 #include "sim/core/behaviour.h"
+#include "sim/core/envelope.h"
 
 namespace ahhs::arena {
 
@@ -64,6 +65,28 @@ PostEvaluation PostEvaluate(const EpisodeSpec& spec, const sim::Envelope& envelo
   r.upper_quartile = s.upper_quartile;
   r.min = s.min;
   return r;
+}
+
+nlohmann::json PostEvaluation::ToJson() const {
+  using nlohmann::json;
+  const auto number = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json envelope_doc = json::object();
+  for (const auto& k : sim::EnvelopeKeys()) envelope_doc[k.name] = envelope.*k.field;
+  json episodes = json::array();
+  for (std::size_t k = 0; k < seeds.size(); ++k)
+    episodes.push_back({{"seed", seeds[k]},
+                        {"fitness", number(fitnesses[k])},
+                        {"succeeded", static_cast<bool>(succeeded[k])}});
+  return {{"episodes", static_cast<int>(seeds.size())},
+          {"envelope", sim::EnvelopeName(envelope)},
+          {"envelope_half_widths", envelope_doc},
+          {"failed", failed},
+          {"median", number(median)},
+          {"lower_quartile", number(lower_quartile)},
+          {"upper_quartile", number(upper_quartile)},
+          {"min", number(min)},
+          {"success_share", success_share},
+          {"per_episode", episodes}};
 }
 
 std::string PostEvaluation::Describe(sim::ScenarioKind kind) const {

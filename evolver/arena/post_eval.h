@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,8 @@ struct PostEvaluation {
   double success_share = 0;  // of all episodes (a failed one does not succeed)
   // One line: "post-evaluation on 50 held-out episodes (envelope paper): median ..., ...".
   std::string Describe(sim::ScenarioKind kind) const;
+  // Every figure and episode (seed, fitness or null, success), the envelope's half-widths.
+  nlohmann::json ToJson() const;
 };
 
 // Replays `spec`'s genome (its seed and envelope are replaced) on HeldOutSeed(0..n-1) under

@@ -9,8 +9,32 @@ namespace ahhs::evolver {
 using nlohmann::json;
 
 namespace {
+
 // EnvelopeKeys() names "envelope.friction", ...; the config's envelope object "friction", ...
 constexpr std::string_view kEnvelopePrefix = "envelope.";
+
+json EnvelopeToJson(const sim::Envelope& e) {
+  json doc = json::object();
+  for (const auto& k : sim::EnvelopeKeys())
+    doc[std::string(k.name).substr(kEnvelopePrefix.size())] = e.*k.field;
+  return doc;
+}
+
+sim::Envelope EnvelopeFromJson(const json& doc) {
+  if (!doc.is_object()) throw std::invalid_argument("envelope must be an object");
+  sim::Envelope e;
+  for (const auto& [key, value] : doc.items()) {
+    bool known = false;
+    for (const auto& k : sim::EnvelopeKeys())
+      if (std::string(k.name).substr(kEnvelopePrefix.size()) == key) {
+        e.*k.field = value.get<double>();
+        known = true;
+      }
+    if (!known) throw std::invalid_argument("unknown envelope key '" + key + "'");
+  }
+  return e;
+}
+
 }  // namespace
 
 modules::Shape EvolveConfig::shape() const {
@@ -23,6 +47,10 @@ std::string CheckEvolveConfig(const EvolveConfig& c) {
   if (!e.empty()) return e;
   e = sim::CheckEnvelope(c.scenario.envelope);
   if (!e.empty()) return "envelope: " + e;
+  if (c.post_eval < 0 || c.post_eval > kMaxPostEval)
+    return "post-eval must be in [0, " + std::to_string(kMaxPostEval) + "] episodes";
+  e = sim::CheckEnvelope(c.post_eval_envelope);
+  if (!e.empty()) return "post-eval envelope: " + e;
   if (c.hormones < 1 || c.hormones > modules::Ranges::kMaxHormones)
     return "hormones must be in [1, " + std::to_string(modules::Ranges::kMaxHormones) + "]";
   if (c.rules < 1 || c.rules > modules::Ranges::kMaxRules)
@@ -40,12 +68,11 @@ json ConfigToJson(const EvolveConfig& c) {
            {"rules", c.rules},
            {"seed", c.seed}};
   GaParamsToJson(c.ga, &doc);
-  if (!c.scenario.envelope.none()) {  // a paper run's config is what it always was
-    json envelope = json::object();
-    for (const auto& k : sim::EnvelopeKeys())
-      envelope[std::string(k.name).substr(kEnvelopePrefix.size())] = c.scenario.envelope.*k.field;
-    doc["envelope"] = envelope;
-  }
+  // A paper run's config is what it always was: the new keys only when they are used.
+  if (!c.scenario.envelope.none()) doc["envelope"] = EnvelopeToJson(c.scenario.envelope);
+  if (c.post_eval > 0)
+    doc["post_eval"] = {{"episodes", c.post_eval},
+                        {"envelope", EnvelopeToJson(c.post_eval_envelope)}};
   return doc;
 }
 
@@ -64,18 +91,11 @@ EvolveConfig ConfigFromJson(const json& doc) {
     c.rules = doc.at("rules").get<int>();
     c.ga = GaParamsFromJson(doc);
     c.seed = doc.at("seed").get<std::uint64_t>();
-    if (doc.contains("envelope")) {
-      const json& envelope = doc.at("envelope");
-      if (!envelope.is_object()) throw std::invalid_argument("envelope must be an object");
-      for (const auto& [key, value] : envelope.items()) {
-        bool known = false;
-        for (const auto& k : sim::EnvelopeKeys())
-          if (std::string(k.name).substr(kEnvelopePrefix.size()) == key) {
-            c.scenario.envelope.*k.field = value.get<double>();
-            known = true;
-          }
-        if (!known) throw std::invalid_argument("unknown envelope key '" + key + "'");
-      }
+    if (doc.contains("envelope")) c.scenario.envelope = EnvelopeFromJson(doc.at("envelope"));
+    if (doc.contains("post_eval")) {
+      const json& post = doc.at("post_eval");
+      c.post_eval = post.at("episodes").get<int>();
+      c.post_eval_envelope = EnvelopeFromJson(post.at("envelope"));
     }
   } catch (const json::exception& e) {
     throw std::invalid_argument(std::string("run config: ") + e.what());

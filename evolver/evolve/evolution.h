@@ -15,6 +15,8 @@
 
 namespace ahhs::evolver {
 
+inline constexpr int kMaxPostEval = 10000;
+
 struct EvolveConfig {
   sim::ScenarioConfig scenario;
   modules::Variant variant = modules::Variant::kAhhs2;
@@ -22,6 +24,10 @@ struct EvolveConfig {
   int rules = 30;
   GaParams ga;
   std::uint64_t seed = 1;
+  // Held-out post-evaluation of the run's best when it ends (evolver/arena/post_eval.h):
+  // episodes (0: none) and their envelope.
+  int post_eval = 0;
+  sim::Envelope post_eval_envelope;
 
   // The genome shape: sensors and actuators come from the scenario.
   modules::Shape shape() const;

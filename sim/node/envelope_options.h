@@ -4,12 +4,30 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <map>
 #include <string>
 
 #include "sim/core/envelope.h"
 
 namespace ahhs::sim {
+
+// The options that give `envelope` back (to print a command that replays an episode): "" for
+// none, " --envelope paper" for a preset, " --envelope none --envelope.KEY W ..." otherwise.
+inline std::string EnvelopeArguments(const Envelope& envelope) {
+  const std::string name = EnvelopeName(envelope);
+  if (name == "none") return "";
+  if (name != "custom") return " --envelope " + name;
+  std::string args = " --envelope none";
+  for (const auto& k : EnvelopeKeys()) {
+    const double w = envelope.*k.field;
+    if (w == 0) continue;
+    char value[40];
+    std::snprintf(value, sizeof value, "%.17g", w);
+    args += std::string(" --") + k.name + " " + value;
+  }
+  return args;
+}
 
 class EnvelopeOptions {
  public:

@@ -110,6 +110,64 @@ kill -STOP $pid $kids; sleep 12; kill -CONT $pid $kids
 wait $pid || fail "paused run: $(tail -3 $tmp/paused.out)"
 same_run $tmp/whole $tmp/paused "paused 12 s with --worker-wait 2"
 
+echo "== 2b. robust evolution: 3 trials under the envelope, killed and resumed, external workers"
+robust="--scenario gait --hormones 3 --rules 6 --population 6 --generations 6 --duration 2 --seed 12
+  --lcm-url $url --trials 3 --aggregate median --envelope paper"
+$E $robust --out $tmp/r-whole --workers 2 --post-eval 3 >$tmp/out 2>&1 || { cat $tmp/out; fail "robust run"; }
+grep -q "3 trials (median), envelope paper" $tmp/out || fail "robust run header: $(head -3 $tmp/out)"
+# The run ends with its best post-evaluated on held-out episodes, also in post-eval.json.
+grep -q "^post-evaluation on 3 held-out episodes (envelope paper): median " $tmp/out ||
+  fail "no post-evaluation: $(tail -3 $tmp/out)"
+python3 - $tmp/r-whole/post-eval.json <<'PY' || fail "post-eval.json"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["episodes"] == 3 and len(d["per_episode"]) == 3 and d["envelope"] == "paper", d
+assert d["per_episode"][0]["seed"] not in (None, 0)
+PY
+# The printed replay command replays the best's first trial, envelope included, exactly.
+replay=$(sed -n "s|^replay the best genome's first trial (fitness \([^)]*\)): $bin/ahhs-launch ||p" $tmp/out)
+first=$(sed -n "s|^replay the best genome's first trial (fitness \([^)]*\)).*|\1|p" $tmp/out)
+[[ $replay == *"--envelope paper"* ]] || fail "robust replay command: $(grep replay $tmp/out)"
+"$bin/ahhs-launch" $replay --fused >$tmp/replay.out || fail "robust replay"
+[[ "$(tail -1 $tmp/replay.out)" == "fitness: $first" ]] || fail "robust replay gives $(tail -1 $tmp/replay.out), trial 0 stored $first"
+"$bin/ahhs-replay" $tmp/r-whole >$tmp/replay.out || fail "ahhs-replay of a robust run"
+grep -q "trial 0 of 3 (the median of all 3 is" $tmp/replay.out && grep -q "reproduced exactly" $tmp/replay.out ||
+  fail "ahhs-replay of a robust run: $(cat $tmp/replay.out)"
+$E --resume $tmp/r-whole >$tmp/out 2>&1 && grep -q "^post-evaluation on 3 held-out" $tmp/out &&
+  ! grep -q "post-evaluating" $tmp/out || fail "a finished run's post-evaluation was not kept: $(cat $tmp/out)"
+[[ $(sqlite3 $tmp/r-whole/run.sqlite "SELECT COUNT(*) FROM trials") == $((6 * 6 * 3)) ]] ||
+  fail "trials stored: $(sqlite3 $tmp/r-whole/run.sqlite 'SELECT COUNT(*) FROM trials')"
+# The elite is evaluated again on fresh seeds: its stored fitness changes from one generation to
+# the next (in a paper run it never does).
+elite_changes=$(sqlite3 $tmp/r-whole/run.sqlite "SELECT COUNT(*) FROM individuals i JOIN generations p
+  ON p.generation = i.generation - 1 JOIN individuals b ON b.generation = p.generation AND
+  b.idx = p.best_index WHERE i.elite = 1 AND i.fitness != b.fitness")
+[[ $elite_changes -ge 4 ]] || fail "the elite kept its fitness under the envelope ($elite_changes of 5 changed)"
+paper_changes=$(sqlite3 $tmp/g-direct/run.sqlite "SELECT COUNT(*) FROM individuals i JOIN generations p
+  ON p.generation = i.generation - 1 JOIN individuals b ON b.generation = p.generation AND
+  b.idx = p.best_index WHERE i.elite = 1 AND i.fitness != b.fitness")
+[[ $paper_changes == 0 ]] || fail "a paper run's elite changed its fitness ($paper_changes times)"
+$E $robust --out $tmp/r-killed --workers 2 >$tmp/killed.out 2>&1 &
+pid=$!
+for _ in $(seq 1 600); do
+  [[ $(wc -l 2>/dev/null <$tmp/r-killed/generations.csv || echo 0) -gt 2 ]] && break
+  sleep 0.01
+done
+kill -9 $pid; wait $pid 2>/dev/null
+$E --resume $tmp/r-killed --workers 1 >$tmp/resume.out 2>&1 || { cat $tmp/resume.out; fail "robust resume"; }
+same_run $tmp/r-whole $tmp/r-killed "robust run killed and resumed"
+$E --resume $tmp/r-killed --envelope none >$tmp/out 2>&1 && fail "--envelope accepted with --resume"
+grep -q "cannot be given with --resume" $tmp/out || fail "robust resume option message: $(cat $tmp/out)"
+"$bin/ahhs-worker" --lcm-url "$url" --any-run --id lan-a >/dev/null 2>&1 &
+wa=$!
+"$bin/ahhs-worker" --lcm-url "$url" --any-run --id lan-b >/dev/null 2>&1 &
+wb=$!
+$E $robust --out $tmp/r-external --workers 0 >$tmp/out 2>&1 || { cat $tmp/out; fail "robust run, external workers"; }
+kill $wa $wb; wait $wa $wb 2>/dev/null
+same_run $tmp/r-whole $tmp/r-external "robust run on external workers only"
+[[ $(sqlite3 $tmp/r-external/run.sqlite "SELECT COUNT(DISTINCT worker) FROM trials") == 2 ]] ||
+  fail "the trials did not spread over both workers"
+
 echo "== 3. external workers and faults"
 "$bin/ahhs-worker" --lcm-url "$url" --any-run --id steady >$tmp/w1.out 2>&1 &
 w1=$!

@@ -30,6 +30,25 @@ for j in damped fixed; do
     n=$((n + 1))
   done
 done
+# The robust presets (not the paper's): trials, an envelope and a post-evaluation.
+check gait-damped-ahhs2-30-robust scenario=gait joints=damped variant=ahhs2 rules=30 population=20 trials=3 aggregate=mean
+check gait-fixed-ahhs1-80-robust scenario=gait joints=fixed variant=ahhs1 rules=80 population=20 trials=5 aggregate=mean
+n=$((n + 2))
+for p in gait-damped-ahhs2-30-robust gait-fixed-ahhs1-80-robust; do
+  "$E" --config "$src/configs/$p.toml" --show-config >/tmp/preset.$$.json
+  /usr/bin/python3 - /tmp/preset.$$.json <<'PY' || fail "$p: envelope or post-evaluation"
+import json, sys
+c = json.load(open(sys.argv[1]))
+assert c["envelope"]["friction"] == 0.05 and c["envelope"]["sensor-noise"] == 0.023, c["envelope"]
+assert c["post_eval"]["episodes"] == 50 and c["post_eval"]["envelope"] == c["envelope"], c["post_eval"]
+PY
+done
+# A paper preset's configuration has none of the robust keys.
+"$E" --config "$src/configs/gait-damped-ahhs2-30.toml" --show-config | grep -Eq '"(trials|envelope|post_eval)"' &&
+  fail "a paper preset has robust keys"
+# Single envelope keys are quoted TOML keys ("envelope.friction" = 0.1), on top of the preset.
+printf 'envelope = "paper"\n"envelope.friction" = 0.1\ntrials = 2\n' >/tmp/preset.$$.json
+"$E" --config /tmp/preset.$$.json --show-config | grep -q '"friction": 0.1' || fail "envelope key in a config"
 [[ $(ls "$src"/configs/*.toml | wc -l) == $n ]] || fail "configs/ holds presets this test does not know"
 # Options given on the command line override the preset.
 "$E" --config "$src/configs/gait-damped-ahhs2-30.toml" --generations 7 --seed 5 --show-config | grep -q '"generations": 7' ||

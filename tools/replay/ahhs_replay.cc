@@ -44,6 +44,13 @@ namespace {
 
 using TextWriter = ev::AtomicTextFile;
 
+std::string HashText(const am::Genome& genome) {
+  char hash[20];
+  std::snprintf(hash, sizeof hash, "%016llx",
+                static_cast<unsigned long long>(am::GenomeHash(genome)));
+  return hash;
+}
+
 std::string Exact(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", v);
@@ -108,6 +115,9 @@ int main(int argc, char** argv) {
                  "envelope: median, quartiles, min, and the share that succeeds "
                  "(docs/evolution.md)")
       ->check(CLI::Range(1, 100000));
+  std::string post_eval_json;
+  app.add_option("--post-eval-json", post_eval_json,
+                 "where --post-eval writes every episode and figure (JSON)");
   app.add_option("--body-csv", body_csv,
                  "write the organism per tick as CSV (pendulum: cart_x, pole_angle in rad; gait: "
                  "centroid_x, centroid_y in m)");
@@ -133,7 +143,8 @@ int main(int argc, char** argv) {
   app.add_option("--to", video_to, "--video: end, simulated seconds (default: the end)")
       ->check(CLI::Range(0.0, 1e6));
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
-  ahhs::sim::Envelope envelope, post_envelope;  // of the replay; of --post-eval
+  // Of the replay; of --post-eval. A run's episodes keep the run's envelope unless one is given.
+  ahhs::sim::Envelope envelope, post_envelope;
   try {
     envelope = envelope_options.Resolve();
     post_envelope = envelope_options.Resolve("paper");
@@ -150,7 +161,8 @@ int main(int argc, char** argv) {
     if (run_dir.empty() == genome_file.empty())
       throw std::invalid_argument("give either a run directory or --genome FILE");
     const std::string exists = ahhs::cli::RefuseExisting(
-        {log_file, csv_file, rules_csv, mutants_csv, body_csv, robustness_csv, video, filmstrip},
+        {log_file, csv_file, rules_csv, mutants_csv, body_csv, robustness_csv, post_eval_json,
+         video, filmstrip},
         overwrite);
     if (!exists.empty()) {
       std::cerr << "ahhs-replay: " << exists << '\n';
@@ -180,12 +192,25 @@ int main(int argc, char** argv) {
         record = store->LoadIndividual(generation, individual);
       }
       spec.config = config.scenario;
+      if (!envelope_options.given()) {
+        envelope = config.scenario.envelope;
+        if (!envelope.none()) post_envelope = envelope;
+      }
       mutation = config.ga.mutation;
       spec.genome = record.genome;
       spec.seed = app.count("--seed") ? seed : record.eval_seed;
-      if (!app.count("--seed")) stored_fitness = record.evaluation.fitness;
       what = run_dir + ", generation " + std::to_string(record.generation) + ", individual " +
              std::to_string(record.index);
+      if (!app.count("--seed")) {
+        stored_fitness = record.evaluation.fitness;
+        if (!record.trials.empty()) {  // the stored seed is the first trial's
+          stored_fitness = record.trials.front().evaluation.fitness;
+          what += ", trial 0 of " + std::to_string(record.trials.size()) + " (the " +
+                  ev::AggregateName(config.ga.aggregate) + " of all " +
+                  std::to_string(record.trials.size()) + " is " +
+                  Exact(record.evaluation.fitness) + ")";
+        }
+      }
     } else {
       spec.config =
           ahhs::sim::MakeScenarioConfig(ahhs::sim::ParseScenarioKind(scenario),
@@ -211,6 +236,8 @@ int main(int argc, char** argv) {
     spec.config.envelope = envelope;
     if (!robustness_csv.empty() && robustness == 0)
       throw std::invalid_argument("--robustness-csv needs --robustness N");
+    if (!post_eval_json.empty() && post_eval == 0)
+      throw std::invalid_argument("--post-eval-json needs --post-eval N");
     if (!mutation_profile.empty()) mutation.profile = am::ParseMutationProfile(mutation_profile);
   } catch (const std::exception& e) {
     std::cerr << "ahhs-replay: " << e.what() << '\n';
@@ -278,6 +305,12 @@ int main(int argc, char** argv) {
     if (post_eval > 0) {
       const al::PostEvaluation p = al::PostEvaluate(spec, post_envelope, post_eval);
       std::printf("%s\n", p.Describe(spec.config.kind).c_str());
+      if (!post_eval_json.empty()) {
+        nlohmann::json doc = p.ToJson();
+        doc["description"] = p.Describe(spec.config.kind);
+        doc["genome_hash"] = HashText(spec.genome);
+        ev::WriteFileAtomically(post_eval_json, doc.dump(2) + "\n");
+      }
     }
     std::printf("replayed %s with seed %llu\n", what.c_str(),
                 static_cast<unsigned long long>(spec.seed));

@@ -236,6 +236,16 @@ void StudyDir::WriteSummary(const StudyRun& run) const {
         {"final_best", records.back().stats.best},
         {"wall_time_s", wall_time},
         {"physics", store->physics().empty() ? PhysicsOf(store->config()) : store->physics()}};
+    // The run's held-out post-evaluation (ahhs-evolve --post-eval), when it has one.
+    const fs::path post_eval = fs::path(run_dir) / "post-eval.json";
+    std::error_code exists_ec;
+    if (fs::is_regular_file(post_eval, exists_ec)) {
+      try {
+        summary["post_eval"] = json::parse(ReadFile(post_eval));
+      } catch (const json::exception& e) {
+        throw StudyPlanError(post_eval.string() + ": " + e.what());
+      }
+    }
     store->Export();  // the database is the truth: its exports are whole before they are copied
     WriteFile(fs::path(run_dir) / kSummaryFile, summary.dump(2) + "\n");
   } catch (const evolver::RunStoreError& e) {

@@ -20,7 +20,11 @@ const std::set<std::string>& EvolveKeys() {
       "scenario",         "joints",        "modules",       "duration",
       "variant",          "hormones",      "rules",         "population",
       "generations",      "elitism",       "mutation-rate", "mutation-max-change",
-      "mutation-profile", "crossover-rate"};
+      "mutation-profile", "crossover-rate", "trials",
+      "aggregate",        "envelope",      "post-eval",     "post-eval-envelope",
+      "envelope.friction", "envelope.mass", "envelope.servo-torque", "envelope.servo-speed",
+      "envelope.start-heading", "envelope.start-offset", "envelope.sensor-noise",
+      "envelope.start-angle", "envelope.cart-speed"};
   return keys;
 }
 
@@ -172,7 +176,7 @@ std::string ResolvedConfigToml(const StudyConfig& config) {
       throw StudyPlanError(Where(config.preset, value.source()) +
                            "a preset holds only 'key = value' lines");
   for (const auto& [key, text] : config.overrides) {
-    toml::table one = toml::parse(key + " = " + text);
+    toml::table one = toml::parse("\"" + key + "\" = " + text);  // quoted: envelope.KEY
     table.insert_or_assign(key, *one.get(key));
   }
   std::ostringstream out;

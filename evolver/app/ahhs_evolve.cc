@@ -231,10 +231,11 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
   std::unique_ptr<ev::RunStore> store;
   if (!o.resume_dir.empty()) {
     for (const char* name :
-         {"--scenario", "--joints", "--modules", "--duration", "--variant", "--hormones", "--rules",
-          "--population", "--generations", "--elitism", "--mutation-rate", "--mutation-max-change",
-          "--mutation-profile", "--crossover-rate", "--seed", "--overwrite", "--trials",
-          "--aggregate", "--post-eval", "--post-eval-envelope"})
+         {"--scenario",         "--joints",         "--modules",       "--duration",
+          "--variant",          "--hormones",       "--rules",         "--population",
+          "--generations",      "--elitism",        "--mutation-rate", "--mutation-max-change",
+          "--mutation-profile", "--crossover-rate", "--seed",          "--overwrite",
+          "--trials",           "--aggregate",      "--post-eval",     "--post-eval-envelope"})
       if (app.count(name))
         throw std::invalid_argument(std::string(name) +
                                     " cannot be given with --resume: a resumed run keeps "
@@ -283,9 +284,9 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
     config->ga.aggregate = ev::ParseAggregate(o.aggregate);
     config->post_eval = o.post_eval;
     config->post_eval_envelope =
-        !o.post_eval_envelope.empty()           ? ahhs::sim::EnvelopePreset(o.post_eval_envelope)
+        !o.post_eval_envelope.empty()      ? ahhs::sim::EnvelopePreset(o.post_eval_envelope)
         : config->scenario.envelope.none() ? ahhs::sim::EnvelopePreset("paper")
-                                                : config->scenario.envelope;
+                                           : config->scenario.envelope;
     config->seed = o.seed;
     if (o.duration < 0) throw std::invalid_argument("--duration must not be negative");
     const std::string error = ev::CheckEvolveConfig(*config);
@@ -454,10 +455,11 @@ int main(int argc, char** argv) {
   std::printf("run directory: %s\n", dir.c_str());
   std::string robust;
   if (config.ga.trials > 1 || !config.scenario.envelope.none())
-    robust = ", " + std::to_string(config.ga.trials) + " trial" +
-             (config.ga.trials > 1 ? std::string("s (") + ev::AggregateName(config.ga.aggregate) + ")"
-                                   : std::string()) +
-             ", envelope " + ahhs::sim::EnvelopeName(config.scenario.envelope);
+    robust =
+        ", " + std::to_string(config.ga.trials) + " trial" +
+        (config.ga.trials > 1 ? std::string("s (") + ev::AggregateName(config.ga.aggregate) + ")"
+                              : std::string()) +
+        ", envelope " + ahhs::sim::EnvelopeName(config.scenario.envelope);
   std::printf(
       "%s %s, %s %d hormones x %d rules, population %d, "
       "generations %d%s, seed %llu%s\n",

@@ -132,8 +132,8 @@ bool RunEvolution(RunStore& store, const EvolveConfig& config, FitnessEvaluator&
     std::vector<EvaluationJob> jobs;
     std::vector<Evaluation> trials;
     const std::vector<Evaluation> results =
-        StepGeneration(config.shape(), ga, config.seed, g, parents, fitness, evaluator,
-                       &population, &jobs, &trials);
+        StepGeneration(config.shape(), ga, config.seed, g, parents, fitness, evaluator, &population,
+                       &jobs, &trials);
     std::vector<IndividualRecord> records;
     fitness.clear();
     for (int i = 0; i < ga.population; ++i) {
@@ -147,7 +147,8 @@ bool RunEvolution(RunStore& store, const EvolveConfig& config, FitnessEvaluator&
       r.evaluation = results[k];
       if (ga.trials > 1)
         for (int t = 0; t < ga.trials; ++t) {
-          const std::size_t j = k * static_cast<std::size_t>(ga.trials) + static_cast<std::size_t>(t);
+          const std::size_t j =
+              k * static_cast<std::size_t>(ga.trials) + static_cast<std::size_t>(t);
           r.trials.push_back({t, jobs[j].seed, trials[j]});
         }
       fitness.push_back(results[k].fitness);

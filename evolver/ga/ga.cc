@@ -78,7 +78,8 @@ GaParams GaParamsFromJson(const nlohmann::json& doc) {
   p.crossover_rate = doc.at("crossover_rate").get<double>();
   p.selection_epsilon = doc.at("selection_epsilon").get<double>();
   p.trials = doc.value("trials", 1);
-  if (doc.contains("aggregate")) p.aggregate = ParseAggregate(doc.at("aggregate").get<std::string>());
+  if (doc.contains("aggregate"))
+    p.aggregate = ParseAggregate(doc.at("aggregate").get<std::string>());
   return p;
 }
 
@@ -105,9 +106,9 @@ std::uint64_t EvaluationSeed(std::uint64_t run_seed, int generation, int index) 
 
 std::uint64_t TrialSeed(std::uint64_t run_seed, int generation, int index, int trial) {
   if (trial == 0) return EvaluationSeed(run_seed, generation, index);
-  return modules::DeriveSeed(run_seed, {kEvalStream, static_cast<std::uint64_t>(generation),
-                                        static_cast<std::uint64_t>(index),
-                                        static_cast<std::uint64_t>(trial)});
+  return modules::DeriveSeed(
+      run_seed, {kEvalStream, static_cast<std::uint64_t>(generation),
+                 static_cast<std::uint64_t>(index), static_cast<std::uint64_t>(trial)});
 }
 
 std::vector<Genome> InitialPopulation(const modules::Shape& shape, const GaParams& params,
@@ -205,8 +206,8 @@ std::vector<Evaluation> StepGeneration(const modules::Shape& shape, const GaPara
   jobs->clear();
   for (int i = 0; i < params.population; ++i)
     for (int t = 0; t < k; ++t)
-      jobs->push_back({g, i, t, &(*population)[static_cast<std::size_t>(i)],
-                       TrialSeed(run_seed, g, i, t)});
+      jobs->push_back(
+          {g, i, t, &(*population)[static_cast<std::size_t>(i)], TrialSeed(run_seed, g, i, t)});
   std::vector<Evaluation> results = evaluator.Evaluate(*jobs);
   if (results.size() != jobs->size())
     throw std::runtime_error("the evaluator returned the wrong number of results");

@@ -121,14 +121,11 @@ GenerationStats Summarise(const std::vector<double>& fitness);
 // job's, otherwise the aggregate fitness with the trials' summed cost and wall time, the most
 // attempts, the first trial's worker and the first message. Throws when the evaluator returns
 // the wrong number of results.
-std::vector<Evaluation> StepGeneration(const modules::Shape& shape, const GaParams& params,
-                                       std::uint64_t run_seed, int g,
-                                       const std::vector<modules::Genome>& parents,
-                                       const std::vector<double>& fitness,
-                                       FitnessEvaluator& evaluator,
-                                       std::vector<modules::Genome>* population,
-                                       std::vector<EvaluationJob>* jobs,
-                                       std::vector<Evaluation>* trial_results = nullptr);
+std::vector<Evaluation> StepGeneration(
+    const modules::Shape& shape, const GaParams& params, std::uint64_t run_seed, int g,
+    const std::vector<modules::Genome>& parents, const std::vector<double>& fitness,
+    FitnessEvaluator& evaluator, std::vector<modules::Genome>* population,
+    std::vector<EvaluationJob>* jobs, std::vector<Evaluation>* trial_results = nullptr);
 
 // A whole run in memory (tests and analytic benchmarks): evaluates, breeds, repeats. Returns
 // the statistics of every generation; `final_population` gets the last generation's genomes.

@@ -47,9 +47,9 @@ struct IndividualRecord {
   int generation = 0;
   int index = 0;
   modules::Genome genome;
-  bool elite = false;  // copied unchanged from the previous generation
-  std::uint64_t eval_seed = 0;  // the first trial's
-  Evaluation evaluation;        // with several trials: their aggregate (ga.h, StepGeneration)
+  bool elite = false;               // copied unchanged from the previous generation
+  std::uint64_t eval_seed = 0;      // the first trial's
+  Evaluation evaluation;            // with several trials: their aggregate (ga.h, StepGeneration)
   std::vector<TrialRecord> trials;  // every trial when there are several; empty with one
 };
 

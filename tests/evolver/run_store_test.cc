@@ -486,7 +486,8 @@ TEST_CASE("run configs round-trip through JSON and bad ones are refused") {
   CHECK_THROWS_WITH(evolver::ConfigFromJson(bad), Catch::Contains("variant"));
 }
 
-TEST_CASE("a run with k trials stores every trial's seed and fitness, chained, and resumes the same") {
+TEST_CASE(
+    "a run with k trials stores every trial's seed and fitness, chained, and resumes the same") {
   TempDir tmp;
   auto config = SmallConfig();
   config.ga.trials = 3;
@@ -537,8 +538,9 @@ TEST_CASE("a run with k trials stores every trial's seed and fitness, chained, a
   CHECK(DumpRun(*resumed) == DumpRun(*done));
   // A trial changed afterwards breaks the chain.
   resumed.reset();
-  Sql(part, "UPDATE trials SET fitness = fitness + 1e-9 WHERE generation = 3 AND idx = 1 AND "
-            "trial = 2");
+  Sql(part,
+      "UPDATE trials SET fitness = fitness + 1e-9 WHERE generation = 3 AND idx = 1 AND "
+      "trial = 2");
   CHECK_THROWS_WITH(RunStore::Open(part), Catch::Contains("generation 3 does not match"));
 }
 
@@ -592,7 +594,8 @@ TEST_CASE("a run config keeps trials and the envelope, and a paper config has ne
   CHECK(evolver::ConfigToJson(back) == robust);
   auto bad = robust;
   bad["envelope"]["frition"] = 0.1;
-  CHECK_THROWS_WITH(evolver::ConfigFromJson(bad), Catch::Contains("unknown envelope key 'frition'"));
+  CHECK_THROWS_WITH(evolver::ConfigFromJson(bad),
+                    Catch::Contains("unknown envelope key 'frition'"));
   bad = robust;
   bad["envelope"]["mass"] = 2.0;
   CHECK_THROWS_WITH(evolver::ConfigFromJson(bad), Catch::Contains("envelope"));

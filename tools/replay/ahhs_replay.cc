@@ -160,10 +160,10 @@ int main(int argc, char** argv) {
   try {
     if (run_dir.empty() == genome_file.empty())
       throw std::invalid_argument("give either a run directory or --genome FILE");
-    const std::string exists = ahhs::cli::RefuseExisting(
-        {log_file, csv_file, rules_csv, mutants_csv, body_csv, robustness_csv, post_eval_json,
-         video, filmstrip},
-        overwrite);
+    const std::string exists =
+        ahhs::cli::RefuseExisting({log_file, csv_file, rules_csv, mutants_csv, body_csv,
+                                   robustness_csv, post_eval_json, video, filmstrip},
+                                  overwrite);
     if (!exists.empty()) {
       std::cerr << "ahhs-replay: " << exists << '\n';
       return ahhs::cli::kExitUsage;
@@ -207,8 +207,8 @@ int main(int argc, char** argv) {
           stored_fitness = record.trials.front().evaluation.fitness;
           what += ", trial 0 of " + std::to_string(record.trials.size()) + " (the " +
                   ev::AggregateName(config.ga.aggregate) + " of all " +
-                  std::to_string(record.trials.size()) + " is " +
-                  Exact(record.evaluation.fitness) + ")";
+                  std::to_string(record.trials.size()) + " is " + Exact(record.evaluation.fitness) +
+                  ")";
         }
       }
     } else {

@@ -16,15 +16,34 @@ namespace {
 
 // The keys an ahhs-evolve config file may set (its long options that describe a run).
 const std::set<std::string>& EvolveKeys() {
-  static const std::set<std::string> keys{
-      "scenario",         "joints",        "modules",       "duration",
-      "variant",          "hormones",      "rules",         "population",
-      "generations",      "elitism",       "mutation-rate", "mutation-max-change",
-      "mutation-profile", "crossover-rate", "trials",
-      "aggregate",        "envelope",      "post-eval",     "post-eval-envelope",
-      "envelope.friction", "envelope.mass", "envelope.servo-torque", "envelope.servo-speed",
-      "envelope.start-heading", "envelope.start-offset", "envelope.sensor-noise",
-      "envelope.start-angle", "envelope.cart-speed"};
+  static const std::set<std::string> keys{"scenario",
+                                          "joints",
+                                          "modules",
+                                          "duration",
+                                          "variant",
+                                          "hormones",
+                                          "rules",
+                                          "population",
+                                          "generations",
+                                          "elitism",
+                                          "mutation-rate",
+                                          "mutation-max-change",
+                                          "mutation-profile",
+                                          "crossover-rate",
+                                          "trials",
+                                          "aggregate",
+                                          "envelope",
+                                          "post-eval",
+                                          "post-eval-envelope",
+                                          "envelope.friction",
+                                          "envelope.mass",
+                                          "envelope.servo-torque",
+                                          "envelope.servo-speed",
+                                          "envelope.start-heading",
+                                          "envelope.start-offset",
+                                          "envelope.sensor-noise",
+                                          "envelope.start-angle",
+                                          "envelope.cart-speed"};
   return keys;
 }
 
@@ -53,8 +72,8 @@ void ReadOverrides(const std::string& path, const toml::node& node,
   if (!table) Fail(path, node, "expected a table of ahhs-evolve settings");
   for (auto&& [key, value] : *table) {
     const std::string k(key.str());
-    if (!EvolveKeys().count(k)) Fail(path, value, "'" + k + "' is not an ahhs-evolve setting");
     if (k == "seed") Fail(path, value, "a study sets the seeds itself (seeds = N)");
+    if (!EvolveKeys().count(k)) Fail(path, value, "'" + k + "' is not an ahhs-evolve setting");
     if (!value.is_value() || value.is_date() || value.is_time() || value.is_date_time())
       Fail(path, value, "'" + k + "' must be a string, a number or a boolean");
     (*out)[k] = ValueText(k, value);

@@ -16,6 +16,7 @@
 #include <iostream>
 #include <thread>
 
+#include "base/atomic_file.h"
 #include "bus/cli.h"
 #include "bus/cli_toml.h"
 #include "bus/fault_bus.h"
@@ -26,7 +27,6 @@
 #include "evolver/evolve/evolution.h"
 #include "evolver/farm/arena_evaluator.h"
 #include "evolver/farm/farm_evaluator.h"
-#include "evolver/store/atomic_file.h"
 #include "evolver/store/run_store.h"
 #include "modules/core/random.h"
 #include "sim/node/envelope_options.h"
@@ -375,7 +375,7 @@ void PostEvaluateBest(const ev::RunStore& store, const ev::EvolveConfig& config)
   doc["individual"] = best.index;
   doc["genome_hash"] = hash;
   doc["training_fitness"] = best.evaluation.fitness;
-  ev::WriteFileAtomically(path, doc.dump(2) + "\n");
+  ahhs::base::WriteFileAtomically(path, doc.dump(2) + "\n");
   std::printf("%s\n", line.c_str());
 }
 

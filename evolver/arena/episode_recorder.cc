@@ -8,11 +8,11 @@
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 
+#include "base/atomic_file.h"
 #include "base/temp_files.h"
 #include "bus/channels.h"
 #include "bus/codec.h"
 #include "bus/wire_text.h"
-#include "evolver/store/atomic_file.h"
 #include "modules/node/trace_codec.h"
 #include "sim/core/gait.h"
 #include "sim/core/pendulum.h"
@@ -63,7 +63,7 @@ class LogWriter {
   std::int64_t events_ = 0;
 };
 
-using TextWriter = evolver::AtomicTextFile;
+using TextWriter = base::AtomicTextFile;
 
 std::string Exact(double v) {
   char buf[40];

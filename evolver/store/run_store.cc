@@ -17,7 +17,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "evolver/store/atomic_file.h"
+#include "base/atomic_file.h"
 #include "modules/core/genome_json.h"
 
 namespace ahhs::evolver {
@@ -200,7 +200,7 @@ std::uint64_t FromSql(std::int64_t v) { return static_cast<std::uint64_t>(v); }
 // The exports, written whole or not at all (atomic_file.h), with the store's error type.
 void WriteExport(const fs::path& path, const std::string& text) {
   try {
-    WriteFileAtomically(path.string(), text);
+    base::WriteFileAtomically(path.string(), text);
   } catch (const std::runtime_error& e) {
     throw RunStoreError(e.what());
   }

@@ -11,7 +11,7 @@
 #include <set>
 #include <string>
 
-#include "evolver/store/atomic_file.h"
+#include "base/atomic_file.h"
 #include "modules/core/genome.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/variation.h"
@@ -95,7 +95,7 @@ TEST_CASE("a temporary file beside a path is new each time and never a planted s
   SECTION("the atomic writers leave the victim alone and no temporary behind") {
     fs::remove(a);
     fs::remove(b);
-    ahhs::evolver::WriteFileAtomically(target.string(), "new text");
+    ahhs::base::WriteFileAtomically(target.string(), "new text");
     CHECK(Read(target) == "new text");
     const fs::path genome = fs::path(dir.path()) / "g.json";
     fs::create_symlink(victim, genome.string() + ".tmp");

@@ -6,15 +6,55 @@
 //   ahhs-conformance tracker --arena A --modules N  a tracker (SIM/STATE)
 //   ahhs-conformance sim --arena A                an episode server in real time (SIM/CLOCK,
 //   TOPOLOGY)
+//   ahhs-conformance vectors --write FILE         the controller's golden vectors, offline
+//   ahhs-conformance vectors --check FILE         (docs/hardware.md, "Golden vectors")
 #include <CLI/CLI.hpp>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
+#include "base/atomic_file.h"
 #include "bus/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
+#include "tools/conformance/model_vectors.h"
 #include "tools/conformance/module_player.h"
 #include "tools/conformance/player.h"
 #include "tools/conformance/sim_player.h"
+
+namespace {
+
+// ahhs-conformance vectors: --write FILE (atomically) or --check FILE.
+int RunVectors(const std::string& write, const std::string& check) {
+  namespace ac = ahhs::conformance;
+  if (write.empty() == check.empty()) {
+    std::cerr << "ahhs-conformance: vectors needs --write FILE or --check FILE\n";
+    return ahhs::cli::kExitUsage;
+  }
+  try {
+    if (!write.empty()) {
+      ahhs::base::WriteFileAtomically(write, ac::WriteModelVectors());
+      std::cout << "wrote " << write << '\n';
+      return 0;
+    }
+    std::ifstream in(check);
+    if (!in) throw std::runtime_error("cannot read " + check);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string error = ac::CheckModelVectors(text.str());
+    if (!error.empty()) {
+      std::cout << check << ": " << error << "\nNOT conformant\n";
+      return ahhs::cli::kExitFailure;
+    }
+    std::cout << check << ": every output equals modules/core to the bit\nconformant\n";
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "ahhs-conformance: " << e.what() << '\n';
+    return ahhs::cli::kExitFailure;
+  }
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   namespace ac = ahhs::conformance;
@@ -25,10 +65,16 @@ int main(int argc, char** argv) {
   std::string role, url = ahhs::bus::kDefaultLcmUrl;
   ac::PlayOptions options;
   double budget_ms = 25;
-  app.add_option("role", role, "module, firmware, tracker or sim")
+  app.add_option("role", role, "module, firmware, tracker, sim, or vectors (offline)")
       ->required()
-      ->check(CLI::IsMember({"module", "firmware", "tracker", "sim"}));
-  app.add_option("--arena", options.arena, "the arena the implementation serves")->required();
+      ->check(CLI::IsMember({"module", "firmware", "tracker", "sim", "vectors"}));
+  app.add_option("--arena", options.arena, "the arena the implementation serves");
+  std::string write_vectors, check_vectors;
+  auto* write_opt = app.add_option("--write", write_vectors,
+                                   "vectors: write the golden vectors modules/core computes");
+  app.add_option("--check", check_vectors,
+                 "vectors: check a golden vectors file against modules/core")
+      ->excludes(write_opt);
   app.add_option("--id", options.id, "module, firmware: the module under test")
       ->check(CLI::Range(0, 1000));
   app.add_option("--modules", options.modules, "tracker: modules it tracks")
@@ -47,6 +93,11 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "module: seed of the genomes, sensor values and packets played")
       ->capture_default_str();
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (role == "vectors") return RunVectors(write_vectors, check_vectors);
+  if (app.count("--arena") == 0) {
+    std::cerr << "ahhs-conformance: " << role << " needs --arena A (the arena it serves)\n";
+    return ahhs::cli::kExitUsage;
+  }
   const bool tracker = role == "tracker";
   if (role != "sim" && app.count(tracker ? "--modules" : "--id") == 0) {
     std::cerr << "ahhs-conformance: " << role << " needs "

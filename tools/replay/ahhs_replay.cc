@@ -18,6 +18,7 @@
 #include <iostream>
 #include <optional>
 
+#include "base/atomic_file.h"
 #include "base/temp_files.h"
 #include "bus/cli.h"
 #include "evolver/arena/children.h"
@@ -27,7 +28,6 @@
 #include "evolver/arena/post_eval.h"
 #include "evolver/arena/robustness.h"
 #include "evolver/evolve/evolution.h"
-#include "evolver/store/atomic_file.h"
 #include "evolver/store/run_store.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/random.h"
@@ -42,7 +42,7 @@ namespace ev = ahhs::evolver;
 
 namespace {
 
-using TextWriter = ev::AtomicTextFile;
+using TextWriter = ahhs::base::AtomicTextFile;
 
 std::string HashText(const am::Genome& genome) {
   char hash[20];
@@ -309,7 +309,7 @@ int main(int argc, char** argv) {
         nlohmann::json doc = p.ToJson();
         doc["description"] = p.Describe(spec.config.kind);
         doc["genome_hash"] = HashText(spec.genome);
-        ev::WriteFileAtomically(post_eval_json, doc.dump(2) + "\n");
+        ahhs::base::WriteFileAtomically(post_eval_json, doc.dump(2) + "\n");
       }
     }
     std::printf("replayed %s with seed %llu\n", what.c_str(),

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "evolver/store/atomic_file.h"
+#include "base/atomic_file.h"
 #include "evolver/store/run_store.h"
 #include "sim/core/scenario.h"
 
@@ -40,7 +40,7 @@ void WriteFile(const fs::path& path, const std::string& text) {
   std::error_code ec;
   fs::create_directories(path.parent_path(), ec);
   try {
-    evolver::WriteFileAtomically(path.string(), text);
+    base::WriteFileAtomically(path.string(), text);
   } catch (const std::runtime_error& e) {
     throw StudyPlanError(e.what());
   }

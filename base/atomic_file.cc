@@ -1,4 +1,4 @@
-#include "evolver/store/atomic_file.h"
+#include "base/atomic_file.h"
 
 #include <cerrno>
 #include <cstring>
@@ -8,7 +8,7 @@
 
 #include "base/temp_files.h"
 
-namespace ahhs::evolver {
+namespace ahhs::base {
 
 namespace fs = std::filesystem;
 
@@ -48,4 +48,4 @@ void WriteFileAtomically(const std::string& path, const std::string& text) {
   file.Commit();
 }
 
-}  // namespace ahhs::evolver
+}  // namespace ahhs::base

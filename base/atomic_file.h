@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-namespace ahhs::evolver {
+namespace ahhs::base {
 
 // A text file being written. Commit() moves it into place; destroyed without Commit(), it
 // removes its temporary file. Throws std::runtime_error naming the path.
@@ -30,4 +30,4 @@ class AtomicTextFile {
 // The whole text at once. Throws std::runtime_error naming the path.
 void WriteFileAtomically(const std::string& path, const std::string& text);
 
-}  // namespace ahhs::evolver
+}  // namespace ahhs::base

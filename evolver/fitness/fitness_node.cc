@@ -68,7 +68,7 @@ void FitnessNode::OnClock(const sim_clock_t& m) {
                      "no valid SIM/STATE arrived for episode " + std::to_string(episode_) + " (" +
                          std::to_string(m.tick) +
                          " ticks): a tracker must send one state per tick with the episode and "
-                         "tick of SIM/CLOCK (docs/protocol.md)");
+                         "tick of SIM/CLOCK (docs/hardware.md, \"Timing rules\")");
   } else if (m.run_state == sim_clock_t::FINISHED && !monitor_->complete()) {
     finish_deadline_ = std::chrono::steady_clock::now() + final_state_wait_;
     return;

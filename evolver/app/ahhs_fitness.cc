@@ -49,9 +49,9 @@ int main(int argc, char** argv) {
                        static_cast<long long>(f->episode), f->message.c_str());
           return ahhs::cli::kExitFailure;
         }
-        std::printf("episode %lld: %d states, %d ticks missed\nfitness: %.17g\n",
+        std::printf("episode %lld: %d states, %d ticks missed%s%s\nfitness: %.17g\n",
                     static_cast<long long>(f->episode), f->states_seen, f->states_missed,
-                    f->fitness);
+                    f->message.empty() ? "" : "; ", f->message.c_str(), f->fitness);
         std::fflush(stdout);
         if (episodes > 0 && ++done >= episodes) return 0;
       }

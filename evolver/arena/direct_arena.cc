@@ -40,13 +40,17 @@ EpisodeResult RunDirectEpisode(const EpisodeSpec& spec, const DirectObserver& ob
     if (observer && status != sim::StepStatus::kFailed)
       observer({scenario->tick() - 1, scenario.get(), &organism, &sensors});
     if (status == sim::StepStatus::kFailed) {
-      EpisodeResult failed{false, 0, 0, scenario->error(), 0};
+      EpisodeResult failed = EpisodeResult::Failure(scenario->error());
       failed.episode_failed = true;
       return failed;
     }
     if (status == sim::StepStatus::kFinished) break;
   }
-  return {true, scenario->Fitness(), scenario->Cost(), "", 0};
+  EpisodeResult done;
+  done.ok = true;
+  done.fitness = scenario->Fitness();
+  done.cost = scenario->Cost();
+  return done;
 }
 
 double RunDirect(const EpisodeSpec& spec) { return RunDirectEpisode(spec).fitness; }

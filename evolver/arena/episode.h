@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "evolver/arena/external_roles.h"
 #include "modules/core/genome.h"
@@ -46,6 +48,16 @@ struct EpisodeResult {
   // The episode itself failed (physics blew up; `error` says how): a property of the genome
   // and seed, not of the arena. False for arena failures (timeouts, dead processes).
   bool episode_failed = false;
+  // What the roles reported dropping, one line each ("module 2: 11 SENSORS (NaN or out of
+  // [0, 1])", "fitness monitor: 3 SIM/STATE (another episode)"): from the modules' last STATUS and
+  // the monitor's final FITNESS. Empty when nothing was dropped.
+  std::vector<std::string> drops;
+
+  static EpisodeResult Failure(std::string why) {
+    EpisodeResult r;
+    r.error = std::move(why);
+    return r;
+  }
 };
 
 // Checks the genome's sensor/actuator shape against the scenario; "" or a clear message.

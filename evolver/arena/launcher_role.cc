@@ -6,6 +6,7 @@
 #include <ahhs/sim_control_t.hpp>
 #include <algorithm>
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <set>
 #include <vector>
@@ -49,7 +50,12 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
   const std::int64_t ep = spec.episode;
   std::vector<bus::Subscription> subs;
   const genome_t genome = modules::GenomeMessage(spec.genome, ep);
+  std::map<int, std::string> module_drops;  // each module's latest report of drops
   auto on_status = [&](const std::string&, const module_status_t& s) {
+    if (s.episode == ep) {
+      const auto at = s.message.find("dropped: ");
+      if (at != std::string::npos) module_drops[s.module] = s.message.substr(at + 9);
+    }
     if (s.episode == ep &&
         (s.state == module_status_t::READY || s.state == module_status_t::RUNNING)) {
       if (!modules::GenomeHashMatches(s.genome_hash,
@@ -88,6 +94,10 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
                                                 }));
   auto finish = [&](EpisodeResult r) {
     subs.clear();  // unsubscribes
+    for (const auto& [m, text] : module_drops)
+      r.drops.push_back("module " + std::to_string(m) + ": " + text);
+    if (final_fitness && final_fitness->message.rfind("dropped: ", 0) == 0)
+      r.drops.push_back("fitness monitor: " + final_fitness->message.substr(9));
     return r;
   };
 
@@ -109,7 +119,7 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
            Clock::now() > handshake_start + spec.realtime_join_wait;
   };
   while (!(sim_ready && monitor_ready && modules_ok())) {
-    if (!alive(&why)) return finish({false, 0, 0, why, 0});
+    if (!alive(&why)) return finish(EpisodeResult::Failure(why));
     if (!result.error.empty()) return finish(result);
     if (Clock::now() > handshake_end) {
       auto ext = [](bool external) { return external ? " (external)," : ","; };
@@ -122,10 +132,9 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
       missing.pop_back();
       const auto waited =
           std::chrono::duration_cast<std::chrono::seconds>(Clock::now() - handshake_start);
-      return finish({false, 0, 0,
-                     "no answer to the episode handshake from" + missing + " within " +
-                         std::to_string(waited.count()) + " s on arena " + spec.arena,
-                     0});
+      return finish(EpisodeResult::Failure("no answer to the episode handshake from" + missing +
+                                           " within " + std::to_string(waited.count()) +
+                                           " s on arena " + spec.arena));
     }
     if (Clock::now() >= next_send) {
       c.command = sim_control_t::RESET;
@@ -148,22 +157,20 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
   progress_at = Clock::now();
   const bool watch_stalls = spec.stall_timeout.count() > 0 && !spec.realtime;
   while (!final_fitness) {
-    if (!alive(&why)) return finish({false, 0, 0, why, 0});
+    if (!alive(&why)) return finish(EpisodeResult::Failure(why));
     if (watch_stalls && Clock::now() > progress_at + spec.stall_timeout)
-      return finish({false, 0, 0,
-                     "the episode stalled: no progress for " +
-                         std::to_string(spec.stall_timeout.count()) + " s after tick " +
-                         std::to_string(std::max<std::int64_t>(progress_tick, 0)) +
-                         " (exact lockstep waits for every message: one was lost, or a process "
-                         "stopped)",
-                     0});
+      return finish(EpisodeResult::Failure(
+          "the episode stalled: no progress for " + std::to_string(spec.stall_timeout.count()) +
+          " s after tick " + std::to_string(std::max<std::int64_t>(progress_tick, 0)) +
+          " (exact lockstep waits for every message: one was lost, or a process "
+          "stopped)"));
     if (run_state == sim_clock_t::RESET && Clock::now() >= next_start) {
       c.utime = bus::NowUtime();
       bus::PublishTyped(bus, ch.SimControl(), c);
       next_start = Clock::now() + std::chrono::milliseconds(100);
     }
     if (Clock::now() > episode_end)
-      return finish({false, 0, 0, "the episode did not end in time", 0});
+      return finish(EpisodeResult::Failure("the episode did not end in time"));
     if (spec.realtime && Clock::now() >= next_genome) {  // lets a module that starts late join
       auto g = genome;
       g.utime = bus::NowUtime();
@@ -173,12 +180,16 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
     pump(std::chrono::milliseconds(20));
   }
   if (final_fitness->status != fitness_t::OK) {
-    EpisodeResult failed{false, 0, 0, final_fitness->message, 0};
+    EpisodeResult failed = EpisodeResult::Failure(final_fitness->message);
     failed.episode_failed = true;
     return finish(failed);
   }
-  return finish(
-      {true, final_fitness->fitness, final_fitness->cost, "", final_fitness->states_missed});
+  EpisodeResult done;
+  done.ok = true;
+  done.fitness = final_fitness->fitness;
+  done.cost = final_fitness->cost;
+  done.states_missed = final_fitness->states_missed;
+  return finish(done);
 }
 
 }  // namespace ahhs::arena

@@ -13,13 +13,13 @@ FitnessNode::FitnessNode(bus::Bus* bus, std::string arena,
     : bus_(bus), channels_(std::move(arena)), final_state_wait_(final_state_wait) {
   subscriptions_.push_back(bus::SubscribeTyped<sim_control_t>(
       *bus_, channels_.SimControl(),
-      [this](const std::string&, const sim_control_t& m) { OnControl(m); }, &counters_));
+      [this](const std::string&, const sim_control_t& m) { OnControl(m); }, &control_counters_));
   subscriptions_.push_back(bus::SubscribeTyped<sim_state_t>(
       *bus_, channels_.SimState(), [this](const std::string&, const sim_state_t& m) { OnState(m); },
-      &counters_));
+      &state_counters_));
   subscriptions_.push_back(bus::SubscribeTyped<sim_clock_t>(
       *bus_, channels_.SimClock(), [this](const std::string&, const sim_clock_t& m) { OnClock(m); },
-      &counters_));
+      &clock_counters_));
 }
 
 void FitnessNode::OnControl(const sim_control_t& m) {
@@ -30,7 +30,7 @@ void FitnessNode::OnControl(const sim_control_t& m) {
   }
   sim::ScenarioConfig config;
   if (!sim::ConfigFromReset(m, &config).empty()) {
-    ++dropped_;
+    drops_.Count("SIM/CONTROL", "invalid RESET");
     return;
   }
   episode_ = m.episode;
@@ -46,7 +46,9 @@ void FitnessNode::OnControl(const sim_control_t& m) {
 
 void FitnessNode::OnState(const sim_state_t& m) {
   if (!monitor_ || m.episode != episode_ || final_ || !monitor_->Add(m)) {
-    ++dropped_;
+    drops_.Count("SIM/STATE", !monitor_ || m.episode != episode_ ? "another episode"
+                              : final_                           ? "after the result"
+                                                                 : "invalid or repeated");
     return;
   }
   last_tick_ = m.tick;
@@ -106,7 +108,9 @@ fitness_t FitnessNode::Message(bool is_final, std::int8_t status, const std::str
   f.status = status;
   f.states_seen = static_cast<std::int32_t>(monitor_->states_seen());
   f.states_missed = static_cast<std::int32_t>(is_final ? monitor_->ticks_missed() : 0);
-  f.message = bus::ToWireText(text);
+  // A final OK result says what the monitor dropped, per channel and reason.
+  const std::string dropped = is_final && status == fitness_t::OK ? drops() : "";
+  f.message = bus::ToWireText(dropped.empty() ? text : "dropped: " + dropped);
   return f;
 }
 

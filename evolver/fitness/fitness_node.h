@@ -15,6 +15,7 @@
 
 #include "bus/bus.h"
 #include "bus/channels.h"
+#include "bus/drop_log.h"
 #include "bus/typed.h"
 #include "evolver/fitness/fitness_monitor.h"
 
@@ -35,7 +36,18 @@ class FitnessNode {
   // The final result of the current episode, once published.
   const std::optional<fitness_t>& final_result() const { return final_; }
   std::int64_t episode() const { return episode_; }
-  std::uint64_t dropped_messages() const { return counters_.dropped + dropped_; }
+  std::uint64_t dropped_messages() const {
+    return control_counters_.dropped + state_counters_.dropped + clock_counters_.dropped +
+           drops_.total();
+  }
+  // Per channel and reason (bus::DropLog::Summary), "" when nothing was dropped.
+  std::string drops() const {
+    bus::DropLog all = drops_;
+    all.CountUndecodable("SIM/CONTROL", control_counters_);
+    all.CountUndecodable("SIM/STATE", state_counters_);
+    all.CountUndecodable("SIM/CLOCK", clock_counters_);
+    return all.Summary();
+  }
 
  private:
   void OnControl(const sim_control_t& m);
@@ -46,8 +58,8 @@ class FitnessNode {
 
   bus::Bus* bus_;
   bus::ArenaChannels channels_;
-  bus::DecodeCounters counters_;
-  std::uint64_t dropped_ = 0;
+  bus::DecodeCounters control_counters_, state_counters_, clock_counters_;
+  bus::DropLog drops_;
   std::int64_t episode_ = 0;
   sim::ScenarioShape shape_;
   std::unique_ptr<FitnessMonitor> monitor_;

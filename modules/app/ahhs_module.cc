@@ -43,6 +43,8 @@ int main(int argc, char** argv) {
                  static_cast<unsigned long long>(s.missing_packets),
                  static_cast<unsigned long long>(s.late_messages),
                  static_cast<unsigned long long>(s.dropped_messages));
+    if (!s.drops.empty())
+      std::fprintf(stderr, "ahhs-module %d: dropped %s\n", options.id, s.drops.c_str());
   } catch (const std::exception& e) {
     std::cerr << "ahhs-module: " << e.what() << '\n';
     return 1;

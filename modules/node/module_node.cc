@@ -19,16 +19,16 @@ ModuleNode::ModuleNode(bus::Bus* bus, ModuleNodeOptions options)
       status_channel_(channels_.Status(options_.id)) {
   subscriptions_.push_back(bus::SubscribeTyped<genome_t>(
       *bus_, channels_.Genome(), [this](const std::string&, const genome_t& m) { OnGenome(m); },
-      &counters_));
+      &genome_counters_));
   subscriptions_.push_back(bus::SubscribeTyped<topology_t>(
       *bus_, channels_.Topology(),
-      [this](const std::string&, const topology_t& m) { OnTopology(m); }, &counters_));
+      [this](const std::string&, const topology_t& m) { OnTopology(m); }, &topology_counters_));
   subscriptions_.push_back(bus::SubscribeTyped<module_sensors_t>(
       *bus_, channels_.Sensors(options_.id),
-      [this](const std::string&, const module_sensors_t& m) { OnSensors(m); }, &counters_));
+      [this](const std::string&, const module_sensors_t& m) { OnSensors(m); }, &sensors_counters_));
   subscriptions_.push_back(bus::SubscribeTyped<sim_clock_t>(
       *bus_, channels_.SimClock(), [this](const std::string&, const sim_clock_t& m) { OnClock(m); },
-      &counters_));
+      &clock_counters_));
   next_heartbeat_ = Clock::now();
 }
 
@@ -38,8 +38,23 @@ void ModuleNode::OnClock(const sim_clock_t& m) {
 
 ModuleNodeStats ModuleNode::stats() const {
   ModuleNodeStats s = stats_;
-  s.dropped_messages += counters_.dropped;
+  bus::DropLog all = drops_;
+  for (const auto& [channel, counters] :
+       {std::pair<const char*, const bus::DecodeCounters*>{"GENOME", &genome_counters_},
+        {"TOPOLOGY", &topology_counters_},
+        {"SENSORS", &sensors_counters_},
+        {"SIM/CLOCK", &clock_counters_},
+        {"HORMONE", &hormone_counters_}}) {
+    s.dropped_messages += counters->dropped;
+    all.CountUndecodable(channel, *counters);
+  }
+  s.drops = all.Summary();
   return s;
+}
+
+void ModuleNode::Drop(const char* channel, const char* reason) {
+  ++stats_.dropped_messages;
+  drops_.Count(channel, reason);
 }
 
 void ModuleNode::NewEpisode(std::int64_t episode) {
@@ -62,7 +77,7 @@ void ModuleNode::OnGenome(const genome_t& m) {
     // repeat may arrive after the episode started. Rebuilding the controller would wipe its
     // hormones mid-episode: keep it, and only answer READY again before the first tick.
     if (static_cast<std::uint64_t>(m.genome_hash) != genome_hash_) {
-      ++stats_.dropped_messages;
+      Drop("GENOME", "another genome for the running episode");
       stats_.last_error = "a second, different genome for this episode was ignored";
     } else if (ready() && next_tick_ == 0) {
       announce_ready_ = true;
@@ -72,7 +87,7 @@ void ModuleNode::OnGenome(const genome_t& m) {
   Genome g;
   const std::string error = GenomeFromMessage(m, &g);
   if (!error.empty()) {
-    ++stats_.dropped_messages;
+    Drop("GENOME", "invalid");
     stats_.last_error = "genome refused: " + error;
     PublishStatus(module_status_t::ERROR);
     return;
@@ -105,18 +120,20 @@ void ModuleNode::OnTopology(const topology_t& m) {
 
 void ModuleNode::OnSensors(const module_sensors_t& m) {
   if (m.episode != episode_ || m.module != options_.id || !ready()) {
-    ++stats_.dropped_messages;
+    Drop("SENSORS", m.episode != episode_     ? "another episode"
+                    : m.module != options_.id ? "another module's"
+                                              : "before GENOME and TOPOLOGY");
     return;
   }
   if (m.num_sensors != controller_->num_sensors() ||
       m.num_actuators != controller_->num_actuators()) {
-    ++stats_.dropped_messages;
+    Drop("SENSORS", "shape differs from the genome's");
     stats_.last_error = "sensor/actuator shape does not match the genome";
     return;
   }
   for (std::size_t j = 0; j < m.values.size(); ++j) {
     if (m.present[j] && (!std::isfinite(m.values[j]) || m.values[j] < 0 || m.values[j] > 1)) {
-      ++stats_.dropped_messages;
+      Drop("SENSORS", "NaN or out of [0, 1]");
       return;
     }
   }
@@ -136,12 +153,15 @@ void ModuleNode::OnSensors(const module_sensors_t& m) {
 void ModuleNode::OnHormone(const hormone_packet_t& m) {
   if (m.episode != episode_ || !ready() || m.num_hormones != controller_->num_hormones() ||
       !std::binary_search(neighbours_.begin(), neighbours_.end(), m.from_module)) {
-    ++stats_.dropped_messages;
+    Drop("HORMONE", m.episode != episode_                           ? "another episode"
+                    : !ready()                                      ? "before GENOME and TOPOLOGY"
+                    : m.num_hormones != controller_->num_hormones() ? "wrong number of hormones"
+                                                                    : "not a docked neighbour");
     return;
   }
   for (double a : m.amounts) {
     if (!std::isfinite(a) || a < 0 || a > 1) {
-      ++stats_.dropped_messages;
+      Drop("HORMONE", "NaN or out of [0, 1]");
       return;
     }
   }
@@ -250,14 +270,14 @@ void ModuleNode::SyncHormoneSubscriptions() {
         *bus_, channels_.Hormone(n),
         [this, n](const std::string&, const hormone_packet_t& m) {
           if (m.from_module != n) {
-            ++stats_.dropped_messages;  // a module speaking for another
+            Drop("HORMONE", "a module speaking for another");
             return;
           }
           if (std::find(m.to_modules.begin(), m.to_modules.end(), options_.id) !=
               m.to_modules.end())
             OnHormone(m);
         },
-        &counters_);
+        &hormone_counters_);
   }
 }
 
@@ -287,7 +307,10 @@ void ModuleNode::PublishStatus(std::int8_t state) {
   s.missed_ticks = static_cast<std::int32_t>(st.missing_packets);
   s.late_messages = static_cast<std::int32_t>(st.late_messages);
   s.dropped_messages = static_cast<std::int32_t>(st.dropped_messages);
-  s.message = bus::ToWireText(st.last_error);
+  // The error, and what was dropped (per channel and reason), for whoever watches STATUS.
+  std::string message = st.last_error;
+  if (!st.drops.empty()) message += (message.empty() ? "dropped: " : "; dropped: ") + st.drops;
+  s.message = bus::ToWireText(message);
   bus::PublishTyped(*bus_, status_channel_, s);
   next_heartbeat_ = Clock::now() + options_.heartbeat;
 }

@@ -21,6 +21,7 @@
 
 #include "bus/bus.h"
 #include "bus/channels.h"
+#include "bus/drop_log.h"
 #include "bus/typed.h"
 #include "modules/core/hormone_system.h"
 
@@ -42,6 +43,7 @@ struct ModuleNodeStats {
   std::uint64_t missing_packets = 0;   // neighbour packets not there when the tick was stepped
   std::uint64_t late_messages = 0;     // sensors or packets for ticks already stepped
   std::uint64_t dropped_messages = 0;  // undecodable, foreign episode, invalid
+  std::string drops;                   // per channel and reason (bus::DropLog::Summary), "" if none
   std::string last_error;
 };
 
@@ -76,7 +78,11 @@ class ModuleNode {
   bus::Bus* bus_;
   ModuleNodeOptions options_;
   bus::ArenaChannels channels_;
-  bus::DecodeCounters counters_;
+  // Drops, and each channel's undecodable messages.
+  void Drop(const char* channel, const char* reason);
+  bus::DropLog drops_;
+  bus::DecodeCounters genome_counters_, topology_counters_, sensors_counters_, clock_counters_,
+      hormone_counters_;
   ModuleNodeStats stats_;
 
   std::int64_t episode_ = 0;

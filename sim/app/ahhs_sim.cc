@@ -61,6 +61,7 @@ int ServeBus(const std::string& url, const as::SimNodeOptions& options, int epis
         static_cast<unsigned long long>(s.dropped_messages),
         static_cast<unsigned long long>(s.twin_readings), s.last_error.empty() ? "" : "; ",
         s.last_error.c_str());
+    if (!s.drops.empty()) std::fprintf(stderr, "ahhs-sim: dropped so far: %s\n", s.drops.c_str());
     if (episodes > 0 && ++ended >= episodes) break;
   }
   return 0;
@@ -97,6 +98,8 @@ int ServeEpisodes(const std::string& url, const as::EpisodeServerOptions& option
     const auto phase = server.phase();
     if (phase == last_phase) continue;
     last_phase = phase;
+    if (phase == as::EpisodeServer::Phase::kFinished && !server.drops().empty())
+      std::fprintf(stderr, "ahhs-sim: dropped so far: %s\n", server.drops().c_str());
     if (phase == as::EpisodeServer::Phase::kFinished && episodes > 0 && ++ended >= episodes) break;
   }
   return 0;

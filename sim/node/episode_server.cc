@@ -23,7 +23,7 @@ void EpisodeServer::OnControl(const sim_control_t& m) {
       return;
     case sim_control_t::RESET: {
       if (m.episode == refused_episode_) {  // refused or given up: said once
-        ++dropped_;
+        drops_.Count("SIM/CONTROL", "RESET of a refused episode");
         return;
       }
       if (m.episode == episode_ && phase_ == Phase::kReady) {  // a repeat: answer again
@@ -41,7 +41,7 @@ void EpisodeServer::OnControl(const sim_control_t& m) {
         error = "a physical organism cannot be given an envelope of noise (" +
                 EnvelopeName(config.envelope) + "): the real world is its own";
       if (!error.empty()) {
-        ++dropped_;
+        drops_.Count("SIM/CONTROL", "RESET refused");
         say_(ep + " refused: " + error);
         refused_episode_ = m.episode;
         return;
@@ -82,7 +82,7 @@ void EpisodeServer::OnControl(const sim_control_t& m) {
     default:
       break;  // STEP (physical time cannot be stepped), unknown commands
   }
-  ++dropped_;
+  drops_.Count("SIM/CONTROL", "STEP or unknown command");
 }
 
 void EpisodeServer::Confirm() {

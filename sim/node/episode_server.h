@@ -21,6 +21,7 @@
 
 #include "bus/bus.h"
 #include "bus/channels.h"
+#include "bus/drop_log.h"
 #include "bus/typed.h"
 #include "sim/core/scenario.h"
 
@@ -49,7 +50,15 @@ class EpisodeServer {
   Phase phase() const { return phase_; }
   std::int64_t episode() const { return episode_; }
   std::int64_t tick() const { return tick_; }
-  std::int64_t dropped() const { return dropped_ + counters_.dropped; }
+  std::int64_t dropped() const {
+    return static_cast<std::int64_t>(drops_.total() + counters_.dropped);
+  }
+  // Per channel and reason (bus::DropLog::Summary), "" when nothing was dropped.
+  std::string drops() const {
+    bus::DropLog all = drops_;
+    all.CountUndecodable("SIM/CONTROL", counters_);
+    return all.Summary();
+  }
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -74,7 +83,7 @@ class EpisodeServer {
   std::int64_t tick_ = 0;
   bool confirmed_ahead_ = false;
   Clock::time_point confirm_deadline_, tick_deadline_;
-  std::int64_t dropped_ = 0;
+  bus::DropLog drops_;
 };
 
 }  // namespace ahhs::sim

@@ -95,14 +95,14 @@ void SimNode::OnControl(const sim_control_t& m) {
     default:
       break;
   }
-  ++stats_.dropped_messages;  // unknown command, or for an episode this sim is not running
+  Drop("SIM/CONTROL", "unknown command, or another episode");
 }
 
 void SimNode::Reset(const sim_control_t& m) {
   if (m.episode == episode_ && phase_ != Phase::kIdle && phase_ != Phase::kReady) {
     // The launcher repeats RESET until the sim answers; a repeat that arrives after START
     // (datagrams can overtake each other) must not restart the running episode.
-    ++stats_.dropped_messages;
+    Drop("SIM/CONTROL", "RESET of the running episode");
     return;
   }
   ScenarioConfig config;
@@ -141,7 +141,7 @@ void SimNode::Reset(const sim_control_t& m) {
       hardware_subscriptions_[h] = bus::SubscribeTyped<module_sensors_t>(
           *bus_, channels_.Sensors(h),
           [this, h](const std::string&, const module_sensors_t& s) { OnHardwareSensors(h, s); },
-          &hinge_counters_);
+          &hardware_counters_);
   commands_.assign(static_cast<std::size_t>(n),
                    std::vector<double>(static_cast<std::size_t>(scenario_->num_actuators()), 0.0));
   command_tick_.assign(static_cast<std::size_t>(n), -1);
@@ -183,11 +183,12 @@ void SimNode::OnHinge(const std::string& channel, const hinge_command_t& m) {
   if (!scenario_ || m.episode != episode_ || m.module < 0 ||
       m.module >= scenario_->num_compartments() ||
       channel != hinge_channels_[static_cast<std::size_t>(m.module)]) {
-    ++stats_.dropped_messages;  // foreign episode, or a module speaking for another
+    Drop("HINGE",
+         !scenario_ || m.episode != episode_ ? "another episode" : "a module speaking for another");
     return;
   }
   if (!CheckHinge(m, *scenario_).empty()) {
-    ++stats_.dropped_messages;  // NaN, out of range, wrong size: never reaches the physics
+    Drop("HINGE", "NaN, out of range or wrong size");  // never reaches the physics
     return;
   }
   const auto i = static_cast<std::size_t>(m.module);
@@ -197,7 +198,7 @@ void SimNode::OnHinge(const std::string& channel, const hinge_command_t& m) {
       return;
     }
     if (m.tick > scenario_->tick()) {
-      ++stats_.dropped_messages;  // a tick that has not started
+      Drop("HINGE", "a tick that has not started");
       return;
     }
     if (command_tick_[i] != m.tick) ++commands_this_tick_;
@@ -208,7 +209,9 @@ void SimNode::OnHinge(const std::string& channel, const hinge_command_t& m) {
 
 void SimNode::OnHardwareSensors(int module, const module_sensors_t& m) {
   if (!scenario_ || m.episode != episode_ || m.module != module || !std::isfinite(m.hinge_angle)) {
-    ++stats_.dropped_messages;
+    Drop("SENSORS", !scenario_ || m.episode != episode_ ? "another episode"
+                    : m.module != module                ? "another module's"
+                                                        : "hinge angle not finite");
     return;
   }
   twin_angle_[module] = m.hinge_angle;

@@ -16,6 +16,7 @@
 
 #include "bus/bus.h"
 #include "bus/channels.h"
+#include "bus/drop_log.h"
 #include "bus/typed.h"
 #include "sim/core/scenario.h"
 
@@ -47,6 +48,7 @@ struct SimNodeStats {
   std::uint64_t missed_commands = 0;   // lockstep: a module's HINGE(t) missing at the timeout
   std::uint64_t late_commands = 0;     // lockstep: HINGE for a tick already stepped
   std::uint64_t dropped_messages = 0;  // undecodable, foreign episode, invalid values
+  std::string drops;                   // per channel and reason (bus::DropLog::Summary), "" if none
   std::uint64_t refused_resets = 0;
   std::uint64_t twin_readings = 0;  // hardware modules' SENSORS whose hinge_angle was followed
   std::string last_error;           // why the last reset was refused or the episode failed
@@ -73,7 +75,13 @@ class SimNode {
   // Counters, including messages that failed to decode.
   SimNodeStats stats() const {
     SimNodeStats s = stats_;
-    s.dropped_messages += control_counters_.dropped + hinge_counters_.dropped;
+    s.dropped_messages +=
+        control_counters_.dropped + hinge_counters_.dropped + hardware_counters_.dropped;
+    bus::DropLog all = drops_;
+    all.CountUndecodable("SIM/CONTROL", control_counters_);
+    all.CountUndecodable("HINGE", hinge_counters_);
+    all.CountUndecodable("SENSORS", hardware_counters_);
+    s.drops = all.Summary();
     return s;
   }
   bool realtime() const { return realtime_; }
@@ -101,7 +109,12 @@ class SimNode {
   bus::Bus* bus_;
   SimNodeOptions options_;
   bus::ArenaChannels channels_;
-  bus::DecodeCounters control_counters_, hinge_counters_;
+  void Drop(const char* channel, const char* reason) {
+    ++stats_.dropped_messages;
+    drops_.Count(channel, reason);
+  }
+  bus::DropLog drops_;
+  bus::DecodeCounters control_counters_, hinge_counters_, hardware_counters_;
   bus::Subscription control_subscription_;
   std::vector<bus::Subscription> hinge_subscriptions_;  // one per module
   std::map<int, bus::Subscription> hardware_subscriptions_;

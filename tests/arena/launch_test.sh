@@ -121,6 +121,14 @@ wait $sp
 echo "under garbage $(fit $tmp/garb.out), clean $(fit $tmp/clean.out); $(cat $tmp/spam.out)"
 [[ "$(fit $tmp/garb.out)" == "$(fit $tmp/clean.out)" ]] || fail "garbage changed the fitness"
 grep "ahhs-sim: episode" $tmp/garb.err | grep -q "dropped [1-9]" || fail "garbage not counted by the sim"
+# Every role says what it dropped, per channel and reason, without -v.
+grep -Eq "^dropped: module 0: .*[0-9]+ SENSORS \(undecodable\)" $tmp/garb.out ||
+  fail "no per-channel drops of module 0: $(grep dropped $tmp/garb.out)"
+grep -Eq "^dropped: fitness monitor: .*[0-9]+ SIM/STATE \(undecodable\)" $tmp/garb.out ||
+  fail "no per-channel drops of the fitness monitor: $(grep dropped $tmp/garb.out)"
+grep -Eq "^ahhs-sim: dropped so far: .*[0-9]+ HINGE \(undecodable\)" $tmp/garb.err ||
+  fail "no per-channel drops of the sim: $(grep dropped $tmp/garb.err)"
+grep "^dropped: module 2" $tmp/garb.out || true
 
 echo "== 7. real time, a module joins late"
 "$bin/ahhs-sim" --lcm-url "$url" --arena RT --episodes 1 2>$tmp/rt-sim.err & s=$!

@@ -2,7 +2,9 @@
 // side"): a GENOME or TOPOLOGY whose episode is any other id than the current one -- larger or
 // smaller -- starts that episode from rest; SENSORS and HORMONE of another episode never do (they
 // are dropped and counted).
+#include <ahhs/module_status_t.hpp>
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "bus/open_bus.h"
 #include "bus/typed.h"
@@ -100,4 +102,32 @@ TEST_CASE("any other episode id in GENOME or TOPOLOGY resets the module, a small
   m.Topology(12);
   CHECK(m.node.episode() == 12);
   CHECK(m.node.next_tick() == 1);
+}
+
+TEST_CASE("a module says what it dropped, per channel and reason, in its stats and STATUS") {
+  OneModule m;
+  std::string status;
+  auto sub = bus::SubscribeTyped<module_status_t>(
+      *m.owner, "AHHS/MODULE0/STATUS",
+      [&](const std::string&, const module_status_t& s) { status = s.message; });
+  m.Genome(4);
+  m.Topology(4);
+  module_sensors_t s = testing::Fixture<module_sensors_t>();
+  s.episode = 4;
+  s.tick = 0;
+  s.module = 0;
+  s.num_actuators = 1;
+  s.actuator_present = {true};
+  s.values[1] = std::nan("");
+  for (int k = 0; k < 3; ++k) bus::PublishTyped(*m.owner, "AHHS/MODULE0/SENSORS", s);
+  m.Sensors(3, 0);
+  const std::uint8_t junk[5] = {1, 2, 3, 4, 5};
+  m.owner->Publish("AHHS/MODULE0/SENSORS", junk, sizeof junk);
+  m.Poll();
+  CHECK(m.node.stats().drops ==
+        "3 SENSORS (NaN or out of [0, 1]), 1 SENSORS (another episode), 1 SENSORS (undecodable)");
+  m.Sensors(4, 0);  // a tick: the module reports RUNNING with its drops
+  m.Poll();
+  CHECK_THAT(status,
+             Catch::Contains("dropped: 3 SENSORS (NaN or out of [0, 1]), 1 SENSORS (another"));
 }

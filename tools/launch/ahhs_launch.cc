@@ -196,6 +196,8 @@ int main(int argc, char** argv) {
       result.error = e.what();
     }
   }
+  // What the roles dropped, per channel and reason: a bring-up sees it without -v.
+  for (const auto& line : result.drops) std::printf("dropped: %s\n", line.c_str());
   if (!result.ok) {
     std::cerr << "ahhs-launch: episode failed: " << result.error << '\n';
     return g_interrupted ? 130 : 2;

@@ -78,6 +78,19 @@ echo "== neighbourhood"
 "$bin/ahhs-report" neighbourhood $tmp/g.json --scenario pendulum --duration 5 --mutants 3 -o $tmp/nb2 >/dev/null 2>&1 || fail "neighbourhood of a genome file"
 [[ -s $tmp/nb2/neighbourhood.png ]] || fail "neighbourhood of a genome file: figure"
 
+echo "== steps: the physics step judged by post-evaluated distributions"
+knife=$AHHS_SOURCE_DIR/tests/arena/data/knife-edge-damped-ahhs1-120.json
+"$bin/ahhs-report" steps $knife --episodes 2 --jobs 2 -o $tmp/steps >$tmp/steps.out 2>&1 ||
+  { cat $tmp/steps.out; fail "steps"; }
+# One row per step, the task's step (6.25 ms) and twice it judged against half of it.
+[[ $(grep -c "knife-edge" $tmp/steps/steps.csv) == 3 ]] || fail "steps.csv: $(cat $tmp/steps/steps.csv)"
+grep -q "^| genome | 3.125 ms: median (quartiles), over the wall | 6.25 ms: " $tmp/steps/summary.md &&
+  grep -Eq "^- 6.25 ms: (passes|does not pass)$" $tmp/steps/summary.md &&
+  grep -Eq "^- 12.5 ms: (passes|does not pass)$" $tmp/steps/summary.md || fail "steps summary: $(cat $tmp/steps/summary.md)"
+"$bin/ahhs-report" steps $tmp/nothing.json -o $tmp/steps2 >$tmp/err 2>&1 && fail "steps of a missing genome"
+grep -q "no such genome file or run directory" $tmp/err && ! grep -q Traceback $tmp/err ||
+  fail "steps of a missing genome: $(cat $tmp/err)"
+
 echo "== the random pendulum genomes of docs/results.md (1 per setting)"
 "$AHHS_SOURCE_DIR/studies/paper-2010-random-genomes.py" "$bin" --count 1 >$tmp/random.md 2>&1 ||
   fail "random genomes: $(cat $tmp/random.md)"

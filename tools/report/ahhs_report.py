@@ -642,6 +642,9 @@ def main(argv):
     if argv and argv[0] == "study":
         import study_report
         return study_report.main(argv[1:])
+    if argv and argv[0] == "steps":
+        import step_report
+        return step_report.main(argv[1:])
     if argv and argv[0] == "neighbourhood":
         p = argparse.ArgumentParser(prog="ahhs-report neighbourhood",
                                     description="fitness of single mutants of a genome")
@@ -663,7 +666,9 @@ def main(argv):
         prog="ahhs-report", description="figures and a summary for ahhs-evolve runs",
         epilog="also: ahhs-report neighbourhood GENOME_OR_RUN_DIR -o DIR [--mutants N]: the "
                "mutation neighbourhood of a genome (ahhs-report neighbourhood --help); "
-               "ahhs-report study STUDY_DIR -o DIR: a study against the paper's claims")
+               "ahhs-report study STUDY_DIR -o DIR: a study against the paper's claims; "
+               "ahhs-report steps GENOME... -o DIR: the gait's physics step judged by "
+               "post-evaluated distributions")
     p.add_argument("runs", nargs="+",
                    help="run directories, or runs of a study export (ahhs-study export)")
     p.add_argument("-o", "--out", required=True, help="output directory")

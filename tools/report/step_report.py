@@ -1,0 +1,125 @@
+"""ahhs-report steps: is the gait's physics step fine enough, judged by distributions?
+
+A chaotic system has no converged trajectory, so the step is judged by whether the *post-evaluated
+distribution* of each genome converges (docs/scenarios.md, "Physics step by distribution"): every
+genome is replayed on the same N held-out episodes (ahhs-replay --post-eval N) at the task's step
+h, at h / 2 and at 2 h. A step passes when, for every genome, its median and its over-the-wall
+share agree with those at h / 2 within 10 % and 0.15. Writes steps.csv (one row per genome and
+step) and summary.md (the table and the verdicts).
+"""
+import argparse
+import concurrent.futures
+import csv
+import json
+import os
+import tempfile
+
+import ahhs_report as report
+
+# The tasks' steps (sim/core/constants.h, GaitConstants::physics_step_*).
+TASK_STEP = {"damped": 0.00625, "fixed": 0.0125}
+MEDIAN_TOLERANCE = 0.10  # relative, against h / 2
+SHARE_TOLERANCE = 0.15   # absolute, against h / 2
+
+
+def post_evaluate(bin_dir, genome, args, step, tmp):
+    """One genome at one step: the post-evaluation's JSON."""
+    out = os.path.join(tmp, f"{abs(hash((genome, step)))}.json")
+    if os.path.isdir(genome):
+        report.Run(genome)  # a clear error for a directory that is not a run
+        argv = [genome]
+    else:
+        if not os.path.isfile(genome):
+            raise report.ReportError(f"{genome}: no such genome file or run directory")
+        argv = ["--genome", genome, "--scenario", "gait", "--joints", args.joints,
+                "--modules", str(args.modules)]
+    argv += ["--physics-step", repr(step), "--post-eval", str(args.episodes),
+             "--post-eval-json", out]
+    if args.envelope:
+        argv += ["--envelope", args.envelope]
+    report.run_replay(bin_dir, argv)
+    with open(out) as f:
+        return json.load(f)
+
+
+def agrees(row, half):
+    """Whether a step's distribution agrees with the one at half the step."""
+    if row["median"] is None or half["median"] is None:
+        return False
+    scale = max(abs(half["median"]), 1e-9)
+    return (abs(row["median"] - half["median"]) <= MEDIAN_TOLERANCE * scale
+            and abs(row["success_share"] - half["success_share"]) <= SHARE_TOLERANCE)
+
+
+def report_steps(args):
+    report.prepare_out(args.out, args.overwrite)
+    bin_dir = report.find_bin(args)
+    h = args.step or TASK_STEP[args.joints]
+    steps = [h / 2, h, 2 * h]
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="ahhs-steps-") as tmp:
+        with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+            jobs = {(g, s): pool.submit(post_evaluate, bin_dir, g, args, s, tmp)
+                    for g in args.genomes for s in steps}
+            for (g, s), job in jobs.items():
+                p = job.result()
+                rows.append({"genome": g, "step": s, "episodes": p["episodes"],
+                             "failed": p["failed"], "median": p["median"],
+                             "lower_quartile": p["lower_quartile"],
+                             "upper_quartile": p["upper_quartile"], "min": p["min"],
+                             "success_share": p["success_share"]})
+    path = os.path.join(args.out, "steps.csv")
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    by = {(r["genome"], r["step"]): r for r in rows}
+    verdict = {}
+    for s in steps[1:]:
+        verdict[s] = all(agrees(by[(g, s)], by[(g, steps[0])]) for g in args.genomes)
+    fmt = lambda v: "failed" if v is None else f"{v:.3f}"
+    md = ["# Physics step by distribution", "",
+          f"{len(args.genomes)} genomes, each post-evaluated on the same {args.episodes} held-out "
+          f"episodes (envelope {args.envelope or 'of the run, or paper'}), {args.joints} docking, "
+          f"at {steps[0] * 1e3:g} ms, {steps[1] * 1e3:g} ms (the task's) and {steps[2] * 1e3:g} ms.",
+          f"A step passes when every genome's median and over-the-wall share agree with those at "
+          f"{steps[0] * 1e3:g} ms within {MEDIAN_TOLERANCE:.0%} and {SHARE_TOLERANCE}.", "",
+          "| genome | " + " | ".join(f"{s * 1e3:g} ms: median (quartiles), over the wall"
+                                     for s in steps) + " |",
+          "|---|" + "---|" * len(steps)]
+    for g in args.genomes:
+        cells = []
+        for s in steps:
+            r = by[(g, s)]
+            mark = "" if s == steps[0] else (" (agrees)" if agrees(r, by[(g, steps[0])])
+                                             else " (differs)")
+            cells.append(f"{fmt(r['median'])} ({fmt(r['lower_quartile'])} / "
+                         f"{fmt(r['upper_quartile'])}), {r['success_share']:.0%}{mark}")
+        md.append(f"| `{g}` | " + " | ".join(cells) + " |")
+    md.append("")
+    for s in steps[1:]:
+        md.append(f"- {s * 1e3:g} ms: {'passes' if verdict[s] else 'does not pass'}")
+    with open(os.path.join(args.out, "summary.md"), "w") as f:
+        f.write("\n".join(md) + "\n")
+    print("\n".join(md[-2:]))
+    print(f"steps written to {args.out}: summary.md, steps.csv")
+    return 0
+
+
+def main(argv):
+    p = argparse.ArgumentParser(prog="ahhs-report steps", description=__doc__.split("\n")[0])
+    p.add_argument("genomes", nargs="+", help="genome files, or run directories (their best)")
+    p.add_argument("--joints", default="damped", choices=["damped", "fixed"])
+    p.add_argument("--modules", type=int, default=5)
+    p.add_argument("--step", type=float, help="the step to judge, s (default: the task's)")
+    p.add_argument("--episodes", type=int, default=50, help="held-out episodes per genome and step")
+    p.add_argument("--envelope", choices=["none", "paper", "wide"],
+                   help="default: a run's own envelope, else paper")
+    p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="replays at once")
+    p.add_argument("-o", "--out", required=True)
+    p.add_argument("--overwrite", action="store_true", help="replace a report in --out")
+    p.add_argument("--bin", help="directory of ahhs-replay")
+    args = p.parse_args(argv)
+    if args.episodes < 1 or args.jobs < 1:
+        raise report.UsageError("--episodes and --jobs must be at least 1")
+    return report_steps(args)

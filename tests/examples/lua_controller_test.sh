@@ -36,15 +36,17 @@ echo "== random genomes, 3-module gait"
 same_fitness AHHS2 1 $tmp/a2.json --scenario gait --modules 3 --seed 5 --duration 4
 same_fitness AHHS1 0 $tmp/a1.json --scenario gait --modules 3 --seed 5 --duration 4
 
-echo "== an evolved gait (studies/paper-2010, gait-fixed-ahhs1-20 seed 2)"
-run="$AHHS_SOURCE_DIR/studies/paper-2010/gait-fixed-ahhs1-20/seed-2"
-seed=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['best_eval_seed'])" "$run/summary.json")
-same_fitness EVOLVED 2 "$run/best.json" --scenario gait --modules 5 --joints fixed --seed "$seed"
+# Evolved genomes: copies of the first study's bests (tests/fixtures/genomes), with the evaluation
+# seed each stores.
+genomes=$AHHS_SOURCE_DIR/tests/fixtures/genomes
+stored_seed() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['meta']['eval_seed'])" "$1"; }
+echo "== an evolved gait (the first study's gait-fixed-ahhs1-20 seed 2)"
+same_fitness EVOLVED 2 "$genomes/gait-fixed-ahhs1-20-seed2.json" --scenario gait --modules 5 --joints fixed \
+  --seed "$(stored_seed "$genomes/gait-fixed-ahhs1-20-seed2.json")"
 
 echo "== an evolved pendulum (AHHS2-15 seed 1): compartments own some of the shared slots"
-run="$AHHS_SOURCE_DIR/studies/paper-2010/pendulum-ahhs2-15/seed-1"
-seed=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['best_eval_seed'])" "$run/summary.json")
-same_fitness PENDULUM 1 "$run/best.json" --scenario pendulum --seed "$seed" --duration 20
+same_fitness PENDULUM 1 "$genomes/pendulum-ahhs2-15-seed1.json" --scenario pendulum \
+  --seed "$(stored_seed "$genomes/pendulum-ahhs2-15-seed1.json")" --duration 20
 
 echo "== bad options"
 for args in "" "--id x" "--id 1 --seconds 0" "--id 1 --colour red"; do

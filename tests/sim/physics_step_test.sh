@@ -8,7 +8,7 @@ bin=${1:?usage: physics_step_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_scratch
 R="$bin/ahhs-replay"
-fixed=$AHHS_SOURCE_DIR/studies/paper-2010/gait-fixed-ahhs2-20/seed-1/best.json  # evolved at 12.5 ms
+fixed=$AHHS_SOURCE_DIR/tests/fixtures/genomes/gait-fixed-ahhs2-20-seed1.json  # evolved at 12.5 ms
 damped=$AHHS_SOURCE_DIR/tests/sim/data/gait-damped-ahhs2-30-evolved.json        # evolved at 12.5 ms
 die() { echo "FAIL: $*" >&2; exit 1; }  # inside $(...)
 # median NAME JOINTS GENOME STEP: the robust median of GENOME at physics step STEP (s).

@@ -8,8 +8,8 @@ ahhs_netns "$0" "$@"
 ahhs_scratch 'ahhs-view|ahhs-launch|ahhs-sim|ahhs-module|ahhs-fitness|ahhs-logger|ahhs-evolve|ahhs-worker'
 command -v chromium >/dev/null || { echo "chromium not installed (tools/install-deps)"; exit 77; }
 cd "$tmp"
-fixed=$AHHS_SOURCE_DIR/studies/paper-2010/gait-fixed-ahhs2-20/seed-1/best.json
-pend=$AHHS_SOURCE_DIR/studies/paper-2010/pendulum-ahhs1-60/seed-1/best.json
+fixed=$AHHS_SOURCE_DIR/tests/fixtures/genomes/gait-fixed-ahhs2-20-seed1.json
+pend=$AHHS_SOURCE_DIR/tests/fixtures/genomes/pendulum-ahhs1-60-seed1.json
 url='udpm://239.255.76.67:7681?ttl=0&recv_buf_size=4194304'
 
 # js EXPR: a JSON value from the page at $page (ahhs-capture probe).

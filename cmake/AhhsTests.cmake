@@ -12,7 +12,9 @@
 set(AHHS_SKIP_RETURN_CODE 77)
 
 # ahhs_add_catch_test(NAME name SOURCES ... [LIBS ...] [LABELS ...])
-# One executable; every Catch2 TEST_CASE becomes its own CTest test.
+# One executable; every Catch2 TEST_CASE becomes its own CTest test. A case tagged [wall] waits
+# on the wall clock (a timeout, a real-time episode): it is labelled integration, not unit, so
+# the unit tier never sleeps.
 function(ahhs_add_catch_test)
   cmake_parse_arguments(ARG "" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
   if(NOT ARG_LABELS)
@@ -20,14 +22,23 @@ function(ahhs_add_catch_test)
   endif()
   add_executable(${ARG_NAME} ${ARG_SOURCES})
   target_link_libraries(${ARG_NAME} PRIVATE ahhs_catch_main ${ARG_LIBS} ahhs_warnings)
-  catch_discover_tests(${ARG_NAME}
-    TEST_PREFIX "${ARG_NAME}:"
-    # A name CTest cannot pass through whole (a semicolon splits it) would match no test case
-    # and pass without running anything: make that a failure.
-    EXTRA_ARGS --warn NoTests
-    WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}
-    PROPERTIES LABELS "${ARG_LABELS}" SKIP_RETURN_CODE ${AHHS_SKIP_RETURN_CODE}
-               ENVIRONMENT "AHHS_SOURCE_DIR=${PROJECT_SOURCE_DIR};AHHS_BINARY_DIR=${PROJECT_BINARY_DIR}")
+  set(wall_labels "${ARG_LABELS}")
+  list(TRANSFORM wall_labels REPLACE "^unit$" "integration")
+  foreach(part "~[wall]" "[wall]")
+    set(labels "${ARG_LABELS}")
+    if(part STREQUAL "[wall]")
+      set(labels "${wall_labels}")
+    endif()
+    catch_discover_tests(${ARG_NAME}
+      TEST_SPEC "${part}"
+      TEST_PREFIX "${ARG_NAME}:"
+      # A name CTest cannot pass through whole (a semicolon splits it) would match no test case
+      # and pass without running anything: make that a failure.
+      EXTRA_ARGS --warn NoTests
+      WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}
+      PROPERTIES LABELS "${labels}" SKIP_RETURN_CODE ${AHHS_SKIP_RETURN_CODE}
+                 ENVIRONMENT "AHHS_SOURCE_DIR=${PROJECT_SOURCE_DIR};AHHS_BINARY_DIR=${PROJECT_BINARY_DIR}")
+  endforeach()
 endfunction()
 
 # ahhs_add_script_test(NAME name COMMAND ... LABELS ... [TIMEOUT s])

@@ -142,7 +142,8 @@ TEST_CASE("fused arena equals the in-process loop, bit for bit", "[arena]") {
   }
 }
 
-TEST_CASE("exact lockstep: a module stopped longer than any timeout changes nothing", "[arena]") {
+TEST_CASE("exact lockstep: a module stopped longer than any timeout changes nothing",
+          "[arena][wall]") {
   // A process that is descheduled (or SIGSTOPped) for longer than the lockstep timeout: with
   // timeouts the sim goes on without its command and the result changes; exact lockstep waits.
   const Episode e{"gait", 4, 3.0, 8};
@@ -165,7 +166,7 @@ TEST_CASE("exact lockstep: a module stopped longer than any timeout changes noth
 }
 
 TEST_CASE("an exact lockstep episode that stalls fails after the stall timeout, naming the tick",
-          "[arena]") {
+          "[arena][wall]") {
   // The launcher's side: module 1 stops for good at tick 10 (a lost datagram in exact lockstep
   // has the same effect). The episode must fail as an arena error, not hang, not score.
   bus::LcmBus bus("memq://");

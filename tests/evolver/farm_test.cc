@@ -217,7 +217,7 @@ TEST_CASE("a worker refuses a request of another protocol version and says why")
   CHECK(worker.counters().evaluations == 0);
 }
 
-TEST_CASE("without any worker the farm gives up with a clear error, Ctrl-C interrupts") {
+TEST_CASE("without any worker the farm gives up with a clear error, Ctrl-C interrupts", "[wall]") {
   bus::LcmBus bus("memq://");
   {
     FarmEvaluator farm(&bus, Options(), {});

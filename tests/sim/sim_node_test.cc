@@ -359,7 +359,7 @@ TEST_CASE("real time: the latest command is used whatever tick it answered", "[s
 }
 
 TEST_CASE("a hardware module: no SENSORS from the sim, its body follows the reported hinge angle",
-          "[sim][node]") {
+          "[sim][node][wall]") {
   bus::LcmBus bus("memq://");
   sim::SimNodeOptions options;
   options.hardware_modules = {1};

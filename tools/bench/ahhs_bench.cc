@@ -403,7 +403,8 @@ int main(int argc, char** argv) {
       "evolve", "whole evolution runs at the paper's scale through ahhs-evolve (minutes)");
   std::string evolve_task = "all",
               evolve_url = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
-  int evolve_generations = 200, evolve_workers = -1;
+  int evolve_generations = 200, evolve_workers = -1, evolve_trials = 1;
+  std::string evolve_envelope = "none";
   evolve->add_option("--task", evolve_task, "pendulum, gait-damped, gait-fixed or all")
       ->check(CLI::IsMember({"pendulum", "gait-damped", "gait-fixed", "all"}))
       ->capture_default_str();
@@ -411,13 +412,23 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   evolve->add_option("--workers", evolve_workers, "local workers (default: one per core)");
+  evolve->add_option("--trials", evolve_trials, "episodes per individual (robust evolution)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  evolve->add_option("--envelope", evolve_envelope, "envelope of noise: none, paper or wide")
+      ->check(CLI::IsMember({"none", "paper", "wide"}))
+      ->capture_default_str();
   evolve->add_option("--lcm-url", evolve_url, "LCM URL of the farm")->capture_default_str();
   if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
 
   if (evolve->parsed()) {
     std::printf("evolution runs through ahhs-evolve, %s workers, seed 1\n",
                 evolve_workers < 0 ? "one per core" : std::to_string(evolve_workers).c_str());
-    const std::string common = " --seed 1";
+    const std::string common = " --seed 1 --trials " + std::to_string(evolve_trials) +
+                               " --envelope " + evolve_envelope;
+    if (evolve_trials > 1 || evolve_envelope != "none")
+      std::printf("robust: %d trials per individual, envelope %s\n", evolve_trials,
+                  evolve_envelope.c_str());
     if (evolve_task == "pendulum" || evolve_task == "all")
       BenchEvolve(
           "pendulum AHHS2 15 H x 15 R, pop 200",

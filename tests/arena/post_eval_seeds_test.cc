@@ -10,15 +10,18 @@
 
 using namespace ahhs;
 
-TEST_CASE("held-out seeds never equal a run's evaluation seeds", "[post-eval]") {
+TEST_CASE("held-out seeds never equal a run's evaluation seeds, of any trial", "[post-eval]") {
   std::set<std::uint64_t> held_out;
   for (std::uint64_t k = 0; k < 1000; ++k) held_out.insert(arena::HeldOutSeed(k));
   CHECK(held_out.size() == 1000);
   CHECK(arena::HeldOutSeed(0) == arena::HeldOutSeed(0));
-  // Every evaluation seed of 20 runs at the paper's scale (seeds 1-20, 200 x 30).
+  // Every evaluation seed of 20 runs at the paper's scale (seeds 1-20, 200 x 30), with up to 5
+  // trials per individual.
   for (std::uint64_t run = 1; run <= 20; ++run)
     for (int g = 0; g < 200; ++g)
-      for (int i = 0; i < 30; ++i) REQUIRE(held_out.count(evolver::EvaluationSeed(run, g, i)) == 0);
+      for (int i = 0; i < 30; ++i)
+        for (int t = 0; t < 5; ++t)
+          REQUIRE(held_out.count(evolver::TrialSeed(run, g, i, t)) == 0);
 }
 
 TEST_CASE("an envelope travels in RESET: the fused arena equals the direct one, bit for bit",

@@ -20,8 +20,7 @@ TEST_CASE("held-out seeds never equal a run's evaluation seeds, of any trial", "
   for (std::uint64_t run = 1; run <= 20; ++run)
     for (int g = 0; g < 200; ++g)
       for (int i = 0; i < 30; ++i)
-        for (int t = 0; t < 5; ++t)
-          REQUIRE(held_out.count(evolver::TrialSeed(run, g, i, t)) == 0);
+        for (int t = 0; t < 5; ++t) REQUIRE(held_out.count(evolver::TrialSeed(run, g, i, t)) == 0);
 }
 
 TEST_CASE("an envelope travels in RESET: the fused arena equals the direct one, bit for bit",

@@ -5,6 +5,7 @@
 #include <toml++/toml.h>
 
 #include <catch2/catch.hpp>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -76,4 +77,26 @@ TEST_CASE("a bad plan is refused with the line that is wrong") {
   CHECK_THAT(refused("name = \"s\"\n[[config]]\nname = \"a\"\npreset = \"none.toml\"\nseeds = 1\n"),
              Catch::Contains("none.toml"));
   CHECK(refused(head + "seeds = 1\n") == "accepted");
+}
+
+TEST_CASE("the committed study plans load, and their configurations resolve to flat TOML") {
+  const char* src = std::getenv("AHHS_SOURCE_DIR");
+  REQUIRE(src != nullptr);
+  for (const char* name : {"paper-2010.toml", "paper-2010-robust.toml"}) {
+    INFO(name);
+    const auto plan = tools::LoadStudyPlan(std::string(src) + "/studies/" + name);
+    CHECK_FALSE(plan.configs.empty());
+    for (const auto& config : plan.configs) {
+      const toml::table resolved = toml::parse(tools::ResolvedConfigToml(config));
+      CHECK(resolved["generations"].value<int>() == 200);
+    }
+  }
+  const auto robust = tools::LoadStudyPlan(std::string(src) + "/studies/paper-2010-robust.toml");
+  for (const auto& config : robust.configs) {
+    const toml::table resolved = toml::parse(tools::ResolvedConfigToml(config));
+    CHECK(resolved["envelope"].value<std::string>() == "paper");
+    CHECK(resolved["post-eval"].value<int>() == 50);
+    const bool damped = config.name.find("damped") != std::string::npos;
+    CHECK(resolved["trials"].value<int>() == (damped ? 3 : 5));
+  }
 }

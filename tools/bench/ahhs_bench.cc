@@ -424,8 +424,8 @@ int main(int argc, char** argv) {
   if (evolve->parsed()) {
     std::printf("evolution runs through ahhs-evolve, %s workers, seed 1\n",
                 evolve_workers < 0 ? "one per core" : std::to_string(evolve_workers).c_str());
-    const std::string common = " --seed 1 --trials " + std::to_string(evolve_trials) +
-                               " --envelope " + evolve_envelope;
+    const std::string common =
+        " --seed 1 --trials " + std::to_string(evolve_trials) + " --envelope " + evolve_envelope;
     if (evolve_trials > 1 || evolve_envelope != "none")
       std::printf("robust: %d trials per individual, envelope %s\n", evolve_trials,
                   evolve_envelope.c_str());

@@ -32,7 +32,7 @@ for j in damped fixed; do
 done
 # The robust presets (not the paper's): trials, an envelope and a post-evaluation.
 check gait-damped-ahhs2-30-robust scenario=gait joints=damped variant=ahhs2 rules=30 population=20 trials=3 aggregate=mean
-check gait-fixed-ahhs1-80-robust scenario=gait joints=fixed variant=ahhs1 rules=80 population=20 trials=5 aggregate=mean
+check gait-fixed-ahhs1-80-robust scenario=gait joints=fixed variant=ahhs1 rules=80 population=20 trials=5 aggregate=median
 n=$((n + 2))
 for p in gait-damped-ahhs2-30-robust gait-fixed-ahhs1-80-robust; do
   "$E" --config "$src/configs/$p.toml" --show-config >/tmp/preset.$$.json

@@ -872,13 +872,20 @@ void RunStore::Export(bool check_existing) const {
   std::error_code ec;
   fs::create_directories(root / "best", ec);
   auto meta = [&](const IndividualRecord& r) {
-    return json{{"run", run_id_},
-                {"generation", r.generation},
-                {"individual", r.index},
-                {"fitness", r.evaluation.fitness},
-                {"cost", r.evaluation.cost},
-                {"eval_seed", r.eval_seed},
-                {"config", config_}};
+    json m{{"run", run_id_},
+           {"generation", r.generation},
+           {"individual", r.index},
+           {"fitness", r.evaluation.fitness},
+           {"cost", r.evaluation.cost},
+           {"eval_seed", r.eval_seed},
+           {"config", config_}};
+    if (!r.trials.empty()) {  // `fitness` is their aggregate; `eval_seed` the first trial's
+      json trials = json::array();
+      for (const auto& t : r.trials)
+        trials.push_back({{"seed", t.seed}, {"fitness", t.evaluation.fitness}});
+      m["trials"] = trials;
+    }
+    return m;
   };
   for (const auto& g : generations) {
     char name[32];

@@ -229,6 +229,13 @@ int main(int argc, char** argv) {
         what += " (with the evaluation seed it stores)";
         if (meta.contains("fitness") && meta["fitness"].is_number())
           stored_fitness = meta["fitness"].get<double>();
+        // A robust run's genome: the stored seed is its first trial's, `fitness` the aggregate.
+        const auto trials = meta.find("trials");
+        if (trials != meta.end() && trials->is_array() && !trials->empty() &&
+            (*trials)[0].contains("fitness") && (*trials)[0]["fitness"].is_number()) {
+          stored_fitness = (*trials)[0]["fitness"].get<double>();
+          what += ", trial 0 of " + std::to_string(trials->size());
+        }
       }
     }
     spec.config.physics_step = physics_step;

@@ -88,6 +88,18 @@ std::string DumpRun(const RunStore& store) {
   return s.str();
 }
 
+// Starts a run in `dir` and stops it after `generations` committed generations, as Ctrl-C would.
+void StopAfter(const std::string& dir, const std::string& run_id,
+               const evolver::EvolveConfig& config, evolver::FitnessEvaluator& f, int generations) {
+  auto store =
+      RunStore::Create(dir, run_id, 123, evolver::ConfigToJson(config), "test-physics", false);
+  evolver::EvolutionHooks hooks;
+  int committed = 0;
+  hooks.on_generation = [&](const evolver::GenerationRecord&) { ++committed; };
+  hooks.stop = [&] { return committed >= generations; };
+  REQUIRE_FALSE(evolver::RunEvolution(*store, config, f, 1, hooks));
+}
+
 }  // namespace
 
 TEST_CASE("a committed generation comes back bit for bit, with its exports") {
@@ -346,15 +358,7 @@ TEST_CASE("a version-2 run is chained when it is opened for writing, and resumes
         RunStore::Create(whole, "r", 123, evolver::ConfigToJson(config), "test-physics", false);
     REQUIRE(evolver::RunEvolution(*store, config, f, 1));
   }
-  {
-    auto store =
-        RunStore::Create(part, "r", 123, evolver::ConfigToJson(config), "test-physics", false);
-    evolver::EvolutionHooks hooks;
-    int committed = 0;
-    hooks.on_generation = [&](const evolver::GenerationRecord&) { ++committed; };
-    hooks.stop = [&] { return committed > 3; };
-    REQUIRE_FALSE(evolver::RunEvolution(*store, config, f, 1, hooks));
-  }
+  StopAfter(part, "r", config, f, 4);
   // As a build before the chain left it.
   Sql(part, "DROP TABLE chain; UPDATE run SET value = '2' WHERE key = 'format_version'");
   REQUIRE(RunStore::Open(part, evolver::StoreAccess::kRead)->format_version() == 2);
@@ -524,15 +528,7 @@ TEST_CASE(
   CHECK(gen2[0].trials[0].seed != parent.trials[0].seed);
   CHECK(done->LoadIndividual(2, 3).trials.size() == 3);
   // Stopped after generation 1 and resumed: the same rows, trials included.
-  {
-    auto store =
-        RunStore::Create(part, "w", 123, evolver::ConfigToJson(config), "test-physics", false);
-    evolver::EvolutionHooks hooks;
-    int committed = 0;
-    hooks.on_generation = [&](const evolver::GenerationRecord&) { ++committed; };
-    hooks.stop = [&] { return committed > 1; };
-    REQUIRE_FALSE(evolver::RunEvolution(*store, config, f, 1, hooks));
-  }
+  StopAfter(part, "w", config, f, 2);
   auto resumed = RunStore::Open(part);
   REQUIRE(evolver::RunEvolution(*resumed, evolver::ConfigFromJson(resumed->config()), f, 2));
   CHECK(DumpRun(*resumed) == DumpRun(*done));
@@ -554,15 +550,7 @@ TEST_CASE("a format-3 run (one trial, no trials table) is read and resumed as it
         RunStore::Create(whole, "r", 123, evolver::ConfigToJson(config), "test-physics", false);
     REQUIRE(evolver::RunEvolution(*store, config, f, 1));
   }
-  {
-    auto store =
-        RunStore::Create(part, "r", 123, evolver::ConfigToJson(config), "test-physics", false);
-    evolver::EvolutionHooks hooks;
-    int committed = 0;
-    hooks.on_generation = [&](const evolver::GenerationRecord&) { ++committed; };
-    hooks.stop = [&] { return committed > 2; };
-    REQUIRE_FALSE(evolver::RunEvolution(*store, config, f, 1, hooks));
-  }
+  StopAfter(part, "r", config, f, 3);
   // As the build before trials left it: no trials table, version 3, the same digests.
   Sql(part, "DROP TABLE trials; UPDATE run SET value = '3' WHERE key = 'format_version'");
   auto resumed = RunStore::Open(part);

@@ -17,13 +17,13 @@
 #include <thread>
 
 #include "base/atomic_file.h"
-#include "bus/cli.h"
-#include "bus/cli_toml.h"
+#include "base/children.h"
+#include "base/cli.h"
+#include "base/cli_toml.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
-#include "evolver/arena/children.h"
-#include "evolver/arena/post_eval.h"
-#include "evolver/arena/process_arena.h"
+#include "episode/arena/post_eval.h"
+#include "episode/arena/process_arena.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/farm/arena_evaluator.h"
 #include "evolver/farm/farm_evaluator.h"
@@ -313,7 +313,7 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
 // The end of a finished run: where it is, its best fitness, and the command that replays it.
 void PrintSummary(const ev::RunStore& store, const ev::EvolveConfig& config) {
   const ev::IndividualRecord best = store.Best();
-  std::string replay = ahhs::arena::ExecutableDir() + "/ahhs-launch --scenario " +
+  std::string replay = ahhs::base::ExecutableDir() + "/ahhs-launch --scenario " +
                        std::string(ahhs::sim::ScenarioName(config.scenario.kind));
   if (config.scenario.kind == ahhs::sim::ScenarioKind::kGait)
     replay += " --joints " + std::string(ahhs::sim::JointsName(config.scenario.joints)) +
@@ -362,12 +362,12 @@ void PostEvaluateBest(const ev::RunStore& store, const ev::EvolveConfig& config)
   }
   std::printf("post-evaluating the best on %d held-out episodes ...\n", config.post_eval);
   std::fflush(stdout);
-  ahhs::arena::EpisodeSpec spec;
+  ahhs::episode::EpisodeSpec spec;
   spec.config = config.scenario;
   spec.genome = best.genome;
   spec.episode = 1;
-  const ahhs::arena::PostEvaluation p =
-      ahhs::arena::PostEvaluate(spec, config.post_eval_envelope, config.post_eval);
+  const ahhs::episode::PostEvaluation p =
+      ahhs::episode::PostEvaluate(spec, config.post_eval_envelope, config.post_eval);
   const std::string line = p.Describe(config.scenario.kind);
   nlohmann::json doc = p.ToJson();
   doc["description"] = line;
@@ -436,14 +436,14 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
   // Follow-up commands are printed so that they run as printed (full paths).
-  const std::string self = ahhs::arena::ExecutableDir() + "/ahhs-evolve";
+  const std::string self = ahhs::base::ExecutableDir() + "/ahhs-evolve";
 
   // Local workers, started before our own bus exists.
   if (options.workers < 0)
     options.workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  ahhs::arena::ChildProcesses local;
+  ahhs::base::ChildProcesses local;
   int restarts = 0;
-  const std::string worker_bin = ahhs::arena::ExecutableDir() + "/ahhs-worker";
+  const std::string worker_bin = ahhs::base::ExecutableDir() + "/ahhs-worker";
   for (int k = 0; k < options.workers && first < config.ga.generations; ++k)
     local.Start("local worker " + std::to_string(k),
                 {worker_bin, "--quiet", "--lcm-url", options.url, "--arena-kind", options.arena,
@@ -476,7 +476,7 @@ int main(int argc, char** argv) {
   std::printf("workers: %d local (%s arena)%s; more: %s/ahhs-worker --lcm-url '%s' --run %s\n",
               static_cast<int>(local.size()), options.arena.c_str(),
               options.workers == 0 ? ", waiting for external ones" : "",
-              ahhs::arena::ExecutableDir().c_str(), options.url.c_str(), store->run_id().c_str());
+              ahhs::base::ExecutableDir().c_str(), options.url.c_str(), store->run_id().c_str());
   std::fflush(stdout);
 
   int exit_code = 0;
@@ -494,7 +494,7 @@ int main(int argc, char** argv) {
                        " restarts already)");
           continue;
         }
-        progress.Say(ended.name + " ended (" + ahhs::arena::DescribeExit(ended.status) +
+        progress.Say(ended.name + " ended (" + ahhs::base::DescribeExit(ended.status) +
                      "); its jobs go to other workers; starting it again");
         ++restarts;
         local.Restart(ended.index);

@@ -16,12 +16,12 @@
 #include <limits>
 #include <thread>
 
-#include "bus/cli.h"
+#include "base/children.h"
+#include "base/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "bus/wire_text.h"
-#include "evolver/arena/children.h"
-#include "evolver/arena/process_arena.h"
+#include "episode/arena/process_arena.h"
 #include "evolver/farm/arena_evaluator.h"
 #include "evolver/farm/worker_node.h"
 
@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
       why = "--external serves one organism: --slots must be 1";
     else {
       try {
-        ahhs::arena::ParseExternalRoles(external, 1 << 15);  // modules checked per scenario
+        ahhs::episode::ParseExternalRoles(external, 1 << 15);  // modules checked per scenario
       } catch (const std::exception& e) {
         why = e.what();
       }
@@ -157,8 +157,8 @@ int main(int argc, char** argv) {
 
   if (slots > 1) {
     // One process per slot (ODE's solver RNG is process-global); this one only supervises.
-    ahhs::arena::ChildProcesses children;
-    const std::string self = ahhs::arena::ExecutableDir() + "/ahhs-worker";
+    ahhs::base::ChildProcesses children;
+    const std::string self = ahhs::base::ExecutableDir() + "/ahhs-worker";
     for (int k = 0; k < slots; ++k) {
       std::vector<std::string> args{
           self,
@@ -196,8 +196,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   try {
-    ahhs::arena::ArenaOptions arena_options;
-    arena_options.kind = ahhs::arena::ParseArenaKind(arena);
+    ahhs::episode::ArenaOptions arena_options;
+    arena_options.kind = ahhs::episode::ParseArenaKind(arena);
     arena_options.url = arena_url;
     arena_options.name = arena_name.empty() ? "W" + std::to_string(getpid()) : arena_name;
     arena_options.external = external;

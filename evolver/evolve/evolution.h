@@ -24,7 +24,7 @@ struct EvolveConfig {
   int rules = 30;
   GaParams ga;
   std::uint64_t seed = 1;
-  // Held-out post-evaluation of the run's best when it ends (evolver/arena/post_eval.h):
+  // Held-out post-evaluation of the run's best when it ends (episode/arena/post_eval.h):
   // episodes (0: none) and their envelope.
   int post_eval = 0;
   sim::Envelope post_eval_envelope;

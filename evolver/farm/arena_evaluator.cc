@@ -4,12 +4,12 @@
 
 namespace ahhs::evolver {
 
-ArenaEvaluator::ArenaEvaluator(arena::ArenaOptions options) : options_(std::move(options)) {}
+ArenaEvaluator::ArenaEvaluator(episode::ArenaOptions options) : options_(std::move(options)) {}
 
 ArenaEvaluator::~ArenaEvaluator() = default;
 
 FarmResult ArenaEvaluator::Evaluate(const FarmJob& job) {
-  arena::EpisodeSpec spec;
+  episode::EpisodeSpec spec;
   spec.config = job.config;
   spec.genome = job.genome;
   spec.seed = job.seed;
@@ -18,7 +18,7 @@ FarmResult ArenaEvaluator::Evaluate(const FarmJob& job) {
   spec.arena = options_.name;
   spec.episode_timeout = std::chrono::seconds(600);
   FarmResult out;
-  const std::string fit = arena::CheckGenomeFits(job.genome, job.config);
+  const std::string fit = episode::CheckGenomeFits(job.genome, job.config);
   if (!fit.empty()) {
     out.status = FarmResult::Status::kError;
     out.message = fit;
@@ -28,7 +28,7 @@ FarmResult ArenaEvaluator::Evaluate(const FarmJob& job) {
   if (arena_ && (!arena_->healthy() || arena_compartments_ != compartments)) arena_.reset();
   if (!arena_) {
     try {
-      arena_ = arena::MakeArena(options_, job.config);
+      arena_ = episode::MakeArena(options_, job.config);
     } catch (const std::exception& e) {
       out.status = FarmResult::Status::kError;
       out.message = e.what();
@@ -36,7 +36,7 @@ FarmResult ArenaEvaluator::Evaluate(const FarmJob& job) {
     }
     arena_compartments_ = compartments;
   }
-  const arena::EpisodeResult r = arena_->Run(spec);
+  const episode::EpisodeResult r = arena_->Run(spec);
   if (r.ok) {
     out.status = FarmResult::Status::kOk;
     out.fitness = r.fitness;

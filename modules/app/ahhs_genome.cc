@@ -6,7 +6,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "bus/cli.h"
+#include "base/cli.h"
 #include "modules/app/sensor_csv.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/organism.h"

@@ -12,7 +12,7 @@
 #include <cstdio>
 #include <iostream>
 
-#include "bus/cli.h"
+#include "base/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "modules/core/random.h"

@@ -20,7 +20,7 @@
 #include <set>
 #include <sstream>
 
-#include "bus/cli.h"
+#include "base/cli.h"
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
 

@@ -10,8 +10,8 @@
 #include <optional>
 #include <thread>
 
+#include "base/cli.h"
 #include "bus/channels.h"
-#include "bus/cli.h"
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
 #include "evolver/farm/farm_codec.h"

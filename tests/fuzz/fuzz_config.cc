@@ -7,7 +7,7 @@
 #include <sstream>
 #include <string>
 
-#include "bus/cli_toml.h"
+#include "base/cli_toml.h"
 #include "tests/fuzz/fuzz_contract.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

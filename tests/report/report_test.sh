@@ -79,7 +79,7 @@ echo "== neighbourhood"
 [[ -s $tmp/nb2/neighbourhood.png ]] || fail "neighbourhood of a genome file: figure"
 
 echo "== steps: the physics step judged by post-evaluated distributions"
-knife=$AHHS_SOURCE_DIR/tests/arena/data/knife-edge-damped-ahhs1-120.json
+knife=$AHHS_SOURCE_DIR/tests/episode/data/knife-edge-damped-ahhs1-120.json
 "$bin/ahhs-report" steps $knife --episodes 2 --jobs 2 -o $tmp/steps >$tmp/steps.out 2>&1 ||
   { cat $tmp/steps.out; fail "steps"; }
 # One row per step, the task's step (6.25 ms) and twice it judged against half of it.

@@ -12,8 +12,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "base/cli.h"
 #include "bus/channels.h"
-#include "bus/cli.h"
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
 #include "sim/core/scenario.h"

@@ -16,13 +16,13 @@
 #include <thread>
 #include <vector>
 
+#include "base/children.h"
+#include "base/cli.h"
 #include "base/temp_files.h"
-#include "bus/cli.h"
-#include "evolver/arena/children.h"
-#include "evolver/arena/direct_arena.h"
-#include "evolver/arena/episode.h"
-#include "evolver/arena/fused_arena.h"
-#include "evolver/arena/process_arena.h"
+#include "episode/arena/direct_arena.h"
+#include "episode/arena/episode.h"
+#include "episode/arena/fused_arena.h"
+#include "episode/arena/process_arena.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/hormone_system.h"
 #include "modules/core/random.h"
@@ -148,7 +148,7 @@ std::pair<double, double> Timed(F&& f) {
 // seconds, which would otherwise show up as a ratio.
 void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   namespace as = ahhs::sim;
-  namespace al = ahhs::arena;
+  namespace ep = ahhs::episode;
   as::ScenarioConfig config;  // gait, 5 modules, damped, 60 s at 20 Hz
   am::Rng rng(seed);
   const am::Genome genome = am::RandomGenome({am::Variant::kAhhs2, 5, 30, 4, 1}, rng);
@@ -165,14 +165,14 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
     }
     return sim->Fitness();
   };
-  al::EpisodeSpec spec;
+  ep::EpisodeSpec spec;
   spec.config = config;
   spec.genome = genome;
   spec.seed = seed;
   // The same episode's physics without controllers: the hinge commands the controllers gave,
   // recorded once from the loop without a bus, are replayed tick by tick.
   std::vector<std::vector<double>> commands;  // [tick][compartment * actuators + a]
-  al::RunDirectEpisode(spec, [&](const al::DirectTick& t) {
+  ep::RunDirectEpisode(spec, [&](const ep::DirectTick& t) {
     std::vector<double> row;
     for (int c = 0; c < t.scenario->num_compartments(); ++c) {
       const auto& a = t.organism->state(c).actuators;
@@ -212,19 +212,19 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   Ratio fused_ratio, fused_replay_ratio, memq_ratio, memq_replay_ratio, warm_ratio, viewed_ratio;
   // Every fitness any run gave: one value, or the arenas disagree (a bug, not noise).
   std::set<double> fitnesses;
-  al::EpisodeSpec memq_spec = spec;
+  ep::EpisodeSpec memq_spec = spec;
   memq_spec.fused_url = "memq://";
   double start_s = std::nan("");
   std::string failure;
-  std::unique_ptr<al::ProcessArena> processes;
+  std::unique_ptr<ep::ProcessArena> processes;
   const std::string options_arena = "AHHSBENCH" + std::to_string(getpid());
   try {  // sim, 5 modules and the fitness monitor as long-lived processes
     const auto t0 = Clock::now();
-    al::ProcessArenaOptions options;
+    ep::ProcessArenaOptions options;
     options.url = url;
     options.arena = options_arena;
     options.num_modules = config.num_modules;
-    processes = std::make_unique<al::ProcessArena>(options);
+    processes = std::make_unique<ep::ProcessArena>(options);
     start_s = std::chrono::duration<double>(Clock::now() - t0).count();
   } catch (const std::exception& e) {
     failure = e.what();
@@ -232,9 +232,9 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   for (int r = 0; r < repeats; ++r) {
     physics.Add(Timed(physics_only));
     replay.Add(Timed(physics_replay));
-    direct.Add(Timed([&] { return al::RunDirect(spec); }));
-    fused.Add(Timed([&] { return al::RunFused(spec).fitness; }));
-    memq.Add(Timed([&] { return al::RunFused(memq_spec).fitness; }));
+    direct.Add(Timed([&] { return ep::RunDirect(spec); }));
+    fused.Add(Timed([&] { return ep::RunFused(spec).fitness; }));
+    memq.Add(Timed([&] { return ep::RunFused(memq_spec).fitness; }));
     fused_ratio.Add(fused, direct);
     fused_replay_ratio.Add(fused, replay);
     memq_ratio.Add(memq, direct);
@@ -242,7 +242,7 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
     fitnesses.insert({replay.fitness, direct.fitness, fused.fitness, memq.fitness});
     if (processes && failure.empty()) {
       warm.Add(Timed([&] {
-        al::EpisodeSpec next = spec;
+        ep::EpisodeSpec next = spec;
         next.episode = r + 1;  // every episode on the bus has its own id
         const auto result = processes->Run(next, [](std::string*) { return true; });
         if (!result.ok) failure = result.error;
@@ -252,18 +252,19 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
       if (!std::isnan(warm.fitness)) fitnesses.insert(warm.fitness);
       // The same with ahhs-view following the arena (no page attached: the viewer's own cost,
       // receiving the arena's states, fitness and clock and turning them into view events).
-      std::vector<pid_t> viewer{al::SpawnChild({al::ExecutableDir() + "/ahhs-view", "--lcm-url",
-                                                url, "--arena", options_arena, "--port", "0"},
-                                               true)};
+      std::vector<pid_t> viewer{
+          ahhs::base::SpawnChild({ahhs::base::ExecutableDir() + "/ahhs-view", "--lcm-url", url,
+                                  "--arena", options_arena, "--port", "0"},
+                                 true)};
       std::this_thread::sleep_for(std::chrono::milliseconds(500));  // subscribed
       viewed.Add(Timed([&] {
-        al::EpisodeSpec next = spec;
+        ep::EpisodeSpec next = spec;
         next.episode = 1000 + r;
         const auto result = processes->Run(next, [](std::string*) { return true; });
         if (!result.ok) failure = result.error;
         return result.ok ? result.fitness : std::nan("");
       }));
-      al::StopChildren(&viewer, std::chrono::seconds(2));
+      ahhs::base::StopChildren(&viewer, std::chrono::seconds(2));
       viewed_ratio.Add(viewed, warm);
       if (!std::isnan(viewed.fitness)) fitnesses.insert(viewed.fitness);
     }
@@ -274,9 +275,9 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
   const std::string path = scratch.path() + "/genome.json";
   am::SaveGenomeFile(path, genome);
   const std::string out = scratch.path() + "/launch.out";
-  const std::string cmd = al::ExecutableDir() + "/ahhs-launch --scenario gait --genome " + path +
-                          " --seed " + std::to_string(seed) + " --lcm-url '" + url + "' > " + out +
-                          " 2>/dev/null";
+  const std::string cmd = ahhs::base::ExecutableDir() + "/ahhs-launch --scenario gait --genome " +
+                          path + " --seed " + std::to_string(seed) + " --lcm-url '" + url + "' > " +
+                          out + " 2>/dev/null";
   const auto cold = Timed([&] {
     if (std::system(cmd.c_str()) != 0) return std::nan("");
     std::ifstream in(out);
@@ -330,7 +331,7 @@ void BenchEvolve(const std::string& name, const std::string& options, int genera
   const ahhs::base::TempDir scratch("ahhs-bench-evolve-");
   const std::string& dir = scratch.path();
   const std::string command =
-      ahhs::arena::ExecutableDir() + "/ahhs-evolve " + options + " --generations " +
+      ahhs::base::ExecutableDir() + "/ahhs-evolve " + options + " --generations " +
       std::to_string(generations) + " --lcm-url '" + url + "' --out " + dir + "/run" +
       (workers >= 0 ? " --workers " + std::to_string(workers) : "") + " 2>&1";
   const auto start = std::chrono::steady_clock::now();

@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "base/atomic_file.h"
-#include "bus/cli.h"
+#include "base/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "tools/conformance/model_vectors.h"

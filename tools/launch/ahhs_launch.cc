@@ -10,17 +10,17 @@
 #include <cstdio>
 #include <iostream>
 
-#include "bus/cli.h"
+#include "base/cli.h"
 #include "bus/lcm_bus.h"
 #include "bus/open_bus.h"
-#include "evolver/arena/episode.h"
-#include "evolver/arena/fused_arena.h"
-#include "evolver/arena/process_arena.h"
+#include "episode/arena/episode.h"
+#include "episode/arena/fused_arena.h"
+#include "episode/arena/process_arena.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/random.h"
 #include "sim/node/envelope_options.h"
 
-namespace al = ahhs::arena;
+namespace ep = ahhs::episode;
 
 namespace {
 
@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
     return ahhs::cli::kExitUsage;
   }
 
-  al::EpisodeSpec spec;
+  ep::EpisodeSpec spec;
   try {
     if (app.count("--duration") && !(duration > 0))
       throw std::invalid_argument("--duration must be positive");
@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
                     static_cast<unsigned long long>(seed), genome_file.c_str());
       }
     }
-    const std::string fit = al::CheckGenomeFits(spec.genome, spec.config);
+    const std::string fit = ep::CheckGenomeFits(spec.genome, spec.config);
     if (!fit.empty()) throw std::invalid_argument(genome_file + ": " + fit);
     if (const std::string exists = ahhs::cli::RefuseExisting({log_file}, overwrite);
         !exists.empty()) {
@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
         throw std::invalid_argument(
             "--external needs --arena NAME: the external roles must know it");
       spec.external =
-          al::ParseExternalRoles(external, ahhs::sim::ShapeOf(spec.config).compartments);
+          ep::ParseExternalRoles(external, ahhs::sim::ShapeOf(spec.config).compartments);
     }
   } catch (const std::exception& e) {
     std::cerr << "ahhs-launch: " << e.what() << '\n';
@@ -162,13 +162,13 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
 
-  al::EpisodeResult result;
+  ep::EpisodeResult result;
   if (fused) {
-    result = al::RunFused(spec);
+    result = ep::RunFused(spec);
   } else {
     if (url.empty()) url = ahhs::bus::kDefaultLcmUrl;
     try {
-      al::ProcessArenaOptions options;
+      ep::ProcessArenaOptions options;
       options.url = url;
       options.arena = spec.arena;
       options.num_modules = spec.config.num_modules;
@@ -179,11 +179,11 @@ int main(int argc, char** argv) {
       options.external = spec.external;
       options.hardware_modules = hardware_modules;
       options.external_timeout = std::chrono::seconds(external_timeout_s);
-      al::ProcessArena arena_processes(options);
+      ep::ProcessArena arena_processes(options);
       if (!spec.external.empty())
         std::printf("arena %s on %s: waiting up to %d s for %s (external)\n", spec.arena.c_str(),
                     url.c_str(), external_timeout_s,
-                    al::DescribeExternalRoles(spec.external).c_str());
+                    ep::DescribeExternalRoles(spec.external).c_str());
       std::fflush(stdout);
       result = arena_processes.Run(spec, [](std::string* why) {
         if (!g_interrupted) return true;

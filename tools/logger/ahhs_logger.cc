@@ -16,7 +16,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <string>
 
-#include "bus/cli.h"
+#include "base/cli.h"
 
 namespace {
 

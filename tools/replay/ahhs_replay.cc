@@ -19,14 +19,14 @@
 #include <optional>
 
 #include "base/atomic_file.h"
+#include "base/children.h"
+#include "base/cli.h"
 #include "base/temp_files.h"
-#include "bus/cli.h"
-#include "evolver/arena/children.h"
-#include "evolver/arena/direct_arena.h"
-#include "evolver/arena/episode.h"
-#include "evolver/arena/episode_recorder.h"
-#include "evolver/arena/post_eval.h"
-#include "evolver/arena/robustness.h"
+#include "episode/arena/direct_arena.h"
+#include "episode/arena/episode.h"
+#include "episode/arena/episode_recorder.h"
+#include "episode/arena/post_eval.h"
+#include "episode/arena/robustness.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/store/run_store.h"
 #include "modules/core/genome_json.h"
@@ -36,7 +36,7 @@
 #include "sim/node/envelope_options.h"
 
 namespace fs = std::filesystem;
-namespace al = ahhs::arena;
+namespace ep = ahhs::episode;
 namespace am = ahhs::modules;
 namespace ev = ahhs::evolver;
 
@@ -153,7 +153,7 @@ int main(int argc, char** argv) {
     return ahhs::cli::kExitUsage;
   }
 
-  al::EpisodeSpec spec;
+  ep::EpisodeSpec spec;
   am::MutationParams mutation;  // of the mutants: the run's, or the paper's
   std::optional<double> stored_fitness;
   std::string what;
@@ -219,7 +219,7 @@ int main(int argc, char** argv) {
       if (!error.empty()) throw std::invalid_argument(error);
       nlohmann::json meta;
       spec.genome = am::LoadGenomeFile(genome_file, &meta);
-      const std::string fit = al::CheckGenomeFits(spec.genome, spec.config);
+      const std::string fit = ep::CheckGenomeFits(spec.genome, spec.config);
       if (!fit.empty()) throw std::invalid_argument(genome_file + ": " + fit);
       spec.seed = seed;
       what = genome_file;
@@ -268,10 +268,10 @@ int main(int argc, char** argv) {
   try {
     const bool record =
         !film_log.empty() || !csv_file.empty() || !rules_csv.empty() || !body_csv.empty();
-    al::EpisodeRecorder recorder(spec, film_log, csv_file, rules_csv, body_csv);
+    ep::EpisodeRecorder recorder(spec, film_log, csv_file, rules_csv, body_csv);
     ahhs::sim::BehaviourSummary behaviour;
     std::vector<double> commands;
-    const al::EpisodeResult result = al::RunDirectEpisode(spec, [&](const al::DirectTick& t) {
+    const ep::EpisodeResult result = ep::RunDirectEpisode(spec, [&](const ep::DirectTick& t) {
       commands.clear();
       for (int c = 0; c < t.organism->size(); ++c) {
         const auto& a = t.organism->state(c).actuators;
@@ -288,9 +288,9 @@ int main(int argc, char** argv) {
                 << am::GenomeHash(spec.genome) << '\n';
       am::Rng rng(mutant_seed);
       for (int k = 0; k < mutants; ++k) {
-        al::EpisodeSpec mutant = spec;
+        ep::EpisodeSpec mutant = spec;
         am::MutateOneGene(&mutant.genome, mutation, rng);
-        const al::EpisodeResult r = al::RunDirectEpisode(mutant);
+        const ep::EpisodeResult r = ep::RunDirectEpisode(mutant);
         out.out() << k << ',' << Exact(r.ok ? r.fitness : 0) << ',' << am::GenomeHash(mutant.genome)
                   << '\n';
       }
@@ -298,7 +298,7 @@ int main(int argc, char** argv) {
       std::printf("%d single mutants evaluated into %s\n", mutants, mutants_csv.c_str());
     }
     if (robustness > 0) {
-      const al::Robustness r = al::MeasureRobustness(spec, robustness);
+      const ep::Robustness r = ep::MeasureRobustness(spec, robustness);
       if (!robustness_csv.empty()) {
         TextWriter out(robustness_csv);
         out.out() << "friction_scale,fitness\n";
@@ -310,7 +310,7 @@ int main(int argc, char** argv) {
       std::printf("%s\n", r.Describe(result.ok ? result.fitness : 0).c_str());
     }
     if (post_eval > 0) {
-      const al::PostEvaluation p = al::PostEvaluate(spec, post_envelope, post_eval);
+      const ep::PostEvaluation p = ep::PostEvaluate(spec, post_envelope, post_eval);
       std::printf("%s\n", p.Describe(spec.config.kind).c_str());
       if (!post_eval_json.empty()) {
         nlohmann::json doc = p.ToJson();
@@ -349,13 +349,14 @@ int main(int argc, char** argv) {
          {std::pair<std::string, std::string>{"--video", video},
           std::pair<std::string, std::string>{"--filmstrip", filmstrip}}) {
       if (out.empty()) continue;
-      std::vector<std::string> args{al::ExecutableDir() + "/ahhs-view", film_log, flag, out};
+      std::vector<std::string> args{ahhs::base::ExecutableDir() + "/ahhs-view", film_log, flag,
+                                    out};
       if (overwrite) args.push_back("--overwrite");
       if (flag == "--video") {
         args.insert(args.end(), {"--from", Exact(video_from)});
         if (video_to >= 0) args.insert(args.end(), {"--to", Exact(video_to)});
       }
-      if (const int code = al::RunChildToEnd(args); code != 0) {
+      if (const int code = ahhs::base::RunChildToEnd(args); code != 0) {
         std::cerr << "ahhs-replay: " << flag << " " << out << " failed (ahhs-view exit " << code
                   << ")\n";
         return ahhs::cli::kExitFailure;

@@ -14,7 +14,7 @@ import json
 import os
 import tempfile
 
-import ahhs_report as report
+import report_lib as report
 
 # The tasks' steps (sim/core/constants.h, GaitConstants::physics_step_*).
 TASK_STEP = {"damped": 0.00625, "fixed": 0.0125}

@@ -25,9 +25,9 @@ from collections import OrderedDict
 
 import numpy as np
 
-from ahhs_report import (ReportError, Run, UsageError, box_figure, find_bin, prepare_out,
-                         rank_sum_test, report_neighbourhood, report_runs, rule_edges, rule_parts,
-                         run_replay)
+from report_lib import (ReportError, Run, UsageError, box_figure, find_bin, prepare_out,
+                        rank_sum_test, rule_edges, rule_parts, run_replay)
+from run_report import report_neighbourhood, report_runs
 
 PAPER_FIXED_MAXIMUM = 1.7  # "the theoretical maximum fitness of about 1.7" (fixed docking)
 SELDOM = 0.01  # a rule part active in fewer ticks than this triggers "seldom"

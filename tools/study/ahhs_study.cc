@@ -27,9 +27,8 @@
 #include <map>
 #include <thread>
 
-#include "bus/cli.h"
-#include "evolver/arena/children.h"
-#include "evolver/arena/process_arena.h"
+#include "base/children.h"
+#include "base/cli.h"
 #include "evolver/store/run_store.h"
 #include "tools/study/study_dir.h"
 
@@ -155,7 +154,7 @@ std::vector<std::string> EvolveArgv(const at::StudyDir& study, const at::StudyRu
 // Starts one run's ahhs-evolve (new or resumed) as a child; returns false when the run directory
 // stays in use by another process.
 bool StartRun(const at::StudyDir& study, const at::StudyRun& run, const RunOptions& options,
-              const std::string& evolve, ahhs::arena::ChildProcesses* children) {
+              const std::string& evolve, ahhs::base::ChildProcesses* children) {
   const std::string dir = study.RunDir(run);
   for (int k = 0; ahhs::evolver::RunStore::InUse(dir); ++k) {
     if (k == 0)
@@ -170,7 +169,7 @@ bool StartRun(const at::StudyDir& study, const at::StudyRun& run, const RunOptio
 
 int RunStudy(const at::StudyDir& study, RunOptions options) {
   StudyLock lock(study.dir());
-  const std::string evolve = ahhs::arena::ExecutableDir() + "/ahhs-evolve";
+  const std::string evolve = ahhs::base::ExecutableDir() + "/ahhs-evolve";
   if (options.workers_per_run <= 0)
     options.workers_per_run = std::max(
         1, static_cast<int>(std::thread::hardware_concurrency()) / std::max(1, options.parallel));
@@ -206,7 +205,7 @@ int RunStudy(const at::StudyDir& study, RunOptions options) {
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
-  ahhs::arena::ChildProcesses children;
+  ahhs::base::ChildProcesses children;
   std::map<std::size_t, Running> running;  // by child index
   std::size_t next = 0;
   int failed = 0;
@@ -257,7 +256,7 @@ int RunStudy(const at::StudyDir& study, RunOptions options) {
           ++failed;
         }
       } else if (g_signals == 0) {
-        const std::string why = "ahhs-evolve ended (" + ahhs::arena::DescribeExit(status) +
+        const std::string why = "ahhs-evolve ended (" + ahhs::base::DescribeExit(status) +
                                 "): " + LastLine(study.LogFile(done.run));
         std::ofstream(study.FailedFile(done.run)) << why << '\n';
         std::printf("[%s] FAILED %s: %s (log: %s)\n", Stamp().c_str(), done.run.Name().c_str(),
@@ -273,12 +272,12 @@ int RunStudy(const at::StudyDir& study, RunOptions options) {
     std::fflush(stdout);
     children.StopAll(std::chrono::seconds(30));
     std::printf("stopped; continue with: %s/ahhs-study run --resume %s\n",
-                ahhs::arena::ExecutableDir().c_str(), study.dir().c_str());
+                ahhs::base::ExecutableDir().c_str(), study.dir().c_str());
     return kExitInterrupted;
   }
   if (failed > 0) {
     std::printf("%d runs failed (see: %s/ahhs-study status %s); run --resume to retry them\n",
-                failed, ahhs::arena::ExecutableDir().c_str(), study.dir().c_str());
+                failed, ahhs::base::ExecutableDir().c_str(), study.dir().c_str());
     return kExitFailure;
   }
   if (complete < static_cast<int>(runs.size())) {
@@ -327,8 +326,8 @@ int RunTask(const at::StudyDir& study, const std::string& submission, int index,
   }
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);  // Slurm's cancel, time limit and requeue
-  ahhs::arena::ChildProcesses children;
-  if (!StartRun(study, run, options, ahhs::arena::ExecutableDir() + "/ahhs-evolve", &children))
+  ahhs::base::ChildProcesses children;
+  if (!StartRun(study, run, options, ahhs::base::ExecutableDir() + "/ahhs-evolve", &children))
     throw std::runtime_error(study.RunDir(run) + " stays in use by another process");
   std::printf("[%s] started %s (port %d, %d workers)\n", Stamp().c_str(), name.c_str(),
               options.port_base + run.index, options.workers_per_run);
@@ -348,7 +347,7 @@ int RunTask(const at::StudyDir& study, const std::string& submission, int index,
     if (!ended) std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
   if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
-    const std::string why = "ahhs-evolve ended (" + ahhs::arena::DescribeExit(status) +
+    const std::string why = "ahhs-evolve ended (" + ahhs::base::DescribeExit(status) +
                             "): " + LastLine(study.LogFile(run));
     std::ofstream(study.FailedFile(run)) << why << '\n';
     std::printf("[%s] FAILED %s: %s\n", Stamp().c_str(), name.c_str(), why.c_str());
@@ -400,9 +399,9 @@ int Submit(const at::StudyDir& study, const RunOptions& options, const SlurmOpti
     if (!slurm.partition.empty()) out << "#SBATCH --partition=" << slurm.partition << "\n";
     if (!slurm.time.empty()) out << "#SBATCH --time=" << slurm.time << "\n";
     out << "exec " << (slurm.task_wrapper.empty() ? "" : slurm.task_wrapper + " ") << "'"
-        << ahhs::arena::ExecutableDir() << "/ahhs-study' task '" << study.dir()
-        << "' --submission '" << submission << "' --index \"$SLURM_ARRAY_TASK_ID\" --workers "
-        << slurm.cpus_per_run << " --port-base " << options.port_base << "\n";
+        << ahhs::base::ExecutableDir() << "/ahhs-study' task '" << study.dir() << "' --submission '"
+        << submission << "' --index \"$SLURM_ARRAY_TASK_ID\" --workers " << slurm.cpus_per_run
+        << " --port-base " << options.port_base << "\n";
   }
   fs::permissions(script, fs::perms::owner_all | fs::perms::group_read | fs::perms::others_read);
   const std::string command = "'" + slurm.sbatch + "' --parsable '" + script + "' 2>&1";
@@ -423,7 +422,7 @@ int Submit(const at::StudyDir& study, const RunOptions& options, const SlurmOpti
       "study %s in %s: %zu runs submitted as Slurm job array %s (script %s); follow with "
       "squeue and %s/ahhs-study status %s\n",
       study.plan().name.c_str(), study.dir().c_str(), queue.size(), out.c_str(), script.c_str(),
-      ahhs::arena::ExecutableDir().c_str(), study.dir().c_str());
+      ahhs::base::ExecutableDir().c_str(), study.dir().c_str());
   return 0;
 }
 
@@ -438,7 +437,7 @@ at::StudyDir OpenOrCreateStudy(const std::string& plan_file, const std::string& 
   if (!out_dir.empty() && plan_file.empty()) throw CLI::ValidationError("a new study needs a PLAN");
   if (!resume_dir.empty()) return at::StudyDir::Open(resume_dir);
   const at::StudyPlan plan = at::LoadStudyPlan(plan_file);
-  const std::string evolve = ahhs::arena::ExecutableDir() + "/ahhs-evolve";
+  const std::string evolve = ahhs::base::ExecutableDir() + "/ahhs-evolve";
   return at::StudyDir::Create(out_dir, plan_file, plan,
                               [&](const std::string& f) { return ResolveConfig(evolve, f); });
 }
@@ -635,7 +634,7 @@ int main(int argc, char** argv) {
     if (*task) return RunTask(at::StudyDir::Open(study_dir), submission, task_index, task_options);
     if (*report) {
       // The statistics and figures are ahhs-report's (Python): hand over to it.
-      const std::string tool = ahhs::arena::ExecutableDir() + "/ahhs-report";
+      const std::string tool = ahhs::base::ExecutableDir() + "/ahhs-report";
       std::vector<std::string> args{tool, "study", study_dir, "-o", report_dir};
       if (overwrite) args.push_back("--overwrite");
       if (no_replay) args.push_back("--no-replay");

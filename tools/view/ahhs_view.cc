@@ -18,13 +18,13 @@
 #include <iostream>
 #include <thread>
 
+#include "base/children.h"
+#include "base/cli.h"
 #include "base/temp_files.h"
 #include "bus/channels.h"
-#include "bus/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "bus/log_reader.h"
-#include "evolver/arena/children.h"
 #include "evolver/store/run_store.h"
 #include "tools/view/live_bridge.h"
 #include "tools/view/run_follower.h"
@@ -220,7 +220,7 @@ int main(int argc, char** argv) {
   }
 
   if (capture) {
-    const std::string tool = ahhs::arena::ExecutableDir() + "/ahhs-capture";
+    const std::string tool = ahhs::base::ExecutableDir() + "/ahhs-capture";
     std::vector<std::string> args{tool};
     if (!video.empty()) {
       args.insert(args.end(), {"video", server->url(), video, "--fps", std::to_string(fps),
@@ -231,7 +231,7 @@ int main(int argc, char** argv) {
                   {"filmstrip", server->url(), filmstrip, "--frames", std::to_string(frames)});
     }
     args.insert(args.end(), {"--size", size});
-    const int code = ahhs::arena::RunChildToEnd(args, [] { return g_stop.load(); });
+    const int code = ahhs::base::RunChildToEnd(args, [] { return g_stop.load(); });
     return g_stop ? ahhs::cli::kExitInterrupted : code;
   }
 

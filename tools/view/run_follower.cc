@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "evolver/arena/direct_arena.h"
-#include "evolver/arena/episode_recorder.h"
+#include "episode/arena/direct_arena.h"
+#include "episode/arena/episode_recorder.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/store/run_store.h"
 #include "modules/core/genome.h"
@@ -52,16 +52,16 @@ std::optional<Json> RunFollower::Poll() {
   if (hash == shown_hash_) return std::nullopt;  // the same genome (an elite): keep showing it
   shown_hash_ = hash;
 
-  arena::EpisodeSpec spec;
+  episode::EpisodeSpec spec;
   spec.config = evolver::ConfigFromJson(store_->config()).scenario;
   spec.genome = best.genome;
   spec.seed = best.eval_seed;
   spec.episode = 1;
   const std::string log = (fs::path(scratch_dir_) / "best.lcm").string();
   {
-    arena::EpisodeRecorder recorder(spec, log, "", "");
-    const arena::EpisodeResult result =
-        arena::RunDirectEpisode(spec, [&](const arena::DirectTick& t) { recorder.Observe(t); });
+    episode::EpisodeRecorder recorder(spec, log, "", "");
+    const episode::EpisodeResult result =
+        episode::RunDirectEpisode(spec, [&](const episode::DirectTick& t) { recorder.Observe(t); });
     recorder.Commit(result);
   }
   std::string arena_name;

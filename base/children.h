@@ -1,0 +1,79 @@
+// Child processes: the one home for starting, watching, restarting and stopping the programs a
+// process owns (the process arena's sim, monitor and modules; ahhs-evolve's local workers;
+// ahhs-worker's slots; ahhs-study's runs). A child dies with its owner (PR_SET_PDEATHSIG).
+#pragma once
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ahhs::base {
+
+// Starts `argv` (argv[0] a path) as a child that dies with this process and ignores Ctrl-C (its
+// owner stops it in order). With `quiet` its stdout goes to /dev/null; with an `output_file` its
+// stdout and stderr are appended to that file. No descriptor beyond stdin/stdout/stderr is
+// inherited. Throws std::runtime_error when fork fails or the output file cannot be opened.
+pid_t SpawnChild(const std::vector<std::string>& argv, bool quiet,
+                 const std::string& output_file = "");
+
+// Sends SIGTERM to every child (pid > 0), waits up to `grace`, then SIGKILLs the rest. Sets
+// every pid to -1.
+void StopChildren(std::vector<pid_t>* pids, std::chrono::milliseconds grace);
+
+// Directory of the running executable (where the others are found: ahhs-sim, ahhs-worker, ...).
+std::string ExecutableDir();
+
+// Runs `argv` as a child (SpawnChild, output on ours) and waits for it: its exit code, or 128 +
+// the signal that killed it. While it runs, `stop_requested` (when given) is asked every 50 ms;
+// once true the child gets SIGTERM. Throws std::runtime_error when fork fails.
+int RunChildToEnd(const std::vector<std::string>& argv,
+                  const std::function<bool()>& stop_requested = {});
+
+// "exit status N" or "killed by signal N" for a waitpid status.
+std::string DescribeExit(int status);
+
+// A set of named children. The destructor stops those still running (SIGTERM, then SIGKILL).
+class ChildProcesses {
+ public:
+  struct Ended {
+    std::size_t index;
+    std::string name;
+    int status;  // waitpid's
+    bool ok() const { return status == 0; }
+  };
+
+  ChildProcesses() = default;
+  ~ChildProcesses();
+  ChildProcesses(const ChildProcesses&) = delete;
+  ChildProcesses& operator=(const ChildProcesses&) = delete;
+
+  // Starts a child (SpawnChild) and returns its index. Throws std::runtime_error.
+  std::size_t Start(std::string name, std::vector<std::string> argv, bool quiet,
+                    std::string output_file = "");
+  // Starts an ended child again with the same arguments.
+  void Restart(std::size_t index);
+  // The children that ended since the last call; never blocks.
+  std::vector<Ended> Reap();
+  bool alive(std::size_t index) const { return children_.at(index).pid > 0; }
+  pid_t pid(std::size_t index) const { return children_.at(index).pid; }
+  std::size_t size() const { return children_.size(); }
+  std::size_t running() const;
+  void Signal(std::size_t index, int sig);
+  // SIGTERM to every running child, SIGKILL to those still there after `grace`.
+  void StopAll(std::chrono::milliseconds grace);
+
+ private:
+  struct Child {
+    std::string name;
+    std::vector<std::string> argv;
+    bool quiet = false;
+    std::string output_file;
+    pid_t pid = -1;
+  };
+  std::vector<Child> children_;
+};
+
+}  // namespace ahhs::base

@@ -1,0 +1,69 @@
+#include "episode/fitness/fitness_monitor.h"
+
+#include <cmath>
+
+#include "sim/core/gait.h"
+#include "sim/core/pendulum.h"
+
+namespace ahhs::episode {
+
+FitnessMonitor::FitnessMonitor(sim::ScenarioKind kind, double control_period,
+                               std::int64_t total_ticks)
+    : kind_(kind), period_(control_period), total_ticks_(total_ticks) {}
+
+bool FitnessMonitor::Add(const sim_state_t& s) {
+  if (!std::isfinite(s.sim_time) || s.sim_time < last_time_) return false;  // out of order
+  const auto n = static_cast<std::size_t>(s.num_bodies);
+  for (std::size_t b = 0; b < n; ++b)
+    if (!std::isfinite(s.px[b]) || !std::isfinite(s.py[b]) || !std::isfinite(s.pz[b])) return false;
+  if (kind_ == sim::ScenarioKind::kPendulum) {
+    if (n < 2) return false;
+    const double k = s.sim_time / period_;
+    const double tick = std::round(k);
+    if (std::fabs(k - tick) < 1e-9 && tick >= 1 && tick > static_cast<double>(ticks_)) {
+      // phi from the bob's position relative to the pivot (the cart's centre): the bob sits at
+      // (-l sin phi, l cos phi).
+      const double phi = std::atan2(s.px[0] - s.px[1], s.pz[1] - s.pz[0]);
+      cost_ += std::fabs(phi);
+      ticks_ = static_cast<std::int64_t>(tick);
+      ++ticks_with_state_;
+    }
+  } else {
+    // Centroid of the module bodies, in message order (the sim lists them module by module).
+    double c[2] = {0, 0};
+    int count = 0;
+    for (std::size_t b = 0; b < n; ++b) {
+      if (s.module[b] < 0) continue;
+      c[0] += s.px[b];
+      c[1] += s.py[b];
+      ++count;
+    }
+    if (count == 0) return false;
+    c[0] /= count;
+    c[1] /= count;
+    if (!have_start_) {
+      start_[0] = c[0];
+      start_[1] = c[1];
+      have_start_ = true;
+    }
+    now_[0] = c[0];
+    now_[1] = c[1];
+    ticks_ = static_cast<std::int64_t>(std::llround(s.sim_time / period_));
+  }
+  last_time_ = s.sim_time;
+  ++states_;
+  return true;
+}
+
+double FitnessMonitor::cost() const {
+  if (kind_ == sim::ScenarioKind::kPendulum) return cost_;
+  return std::hypot(now_[0] - start_[0], now_[1] - start_[1]);
+}
+
+double FitnessMonitor::fitness() const {
+  // Mean over the ticks whose state arrived: a lost state leaves the estimate unbiased.
+  if (kind_ == sim::ScenarioKind::kPendulum) return sim::PendulumFitness(cost_, ticks_with_state_);
+  return sim::GaitFitness(cost(), sim::GaitConstants{});
+}
+
+}  // namespace ahhs::episode

@@ -1,0 +1,53 @@
+// Task fitness computed from the organism's state alone (SIM/STATE), so that a tracking system
+// can replace the simulator. Pure core: feed it states in order, read the fitness.
+#pragma once
+
+#include <ahhs/sim_state_t.hpp>
+#include <cstdint>
+#include <string>
+
+#include "sim/core/scenario.h"
+
+namespace ahhs::episode {
+
+class FitnessMonitor {
+ public:
+  // control_period: seconds per controller tick; total_ticks: ticks of a full episode.
+  FitnessMonitor(sim::ScenarioKind kind, double control_period, std::int64_t total_ticks);
+
+  // Uses one state. Pendulum: every state at a tick boundary (sim_time = k * period, k >= 1)
+  // adds |phi| (from cart = body 0 and bob = body 1) to the cost. Gait: the first state is the
+  // start, the latest one the end; fitness = centroid displacement / (1 m / 0.7).
+  // Returns false (and ignores the state) when it is malformed.
+  bool Add(const sim_state_t& state);
+
+  double fitness() const;
+  double cost() const;
+  std::int64_t ticks_seen() const { return ticks_; }
+  std::int64_t states_seen() const { return states_; }
+  // Whether the episode's last state has arrived (gait) / every tick's state (pendulum).
+  bool complete() const {
+    return kind_ == sim::ScenarioKind::kGait
+               ? last_time_ >= static_cast<double>(total_ticks_) * period_ - 1e-9
+               : ticks_with_state_ >= total_ticks_;
+  }
+  // Ticks of the episode for which the state needed did not arrive.
+  std::int64_t ticks_missed() const {
+    if (kind_ == sim::ScenarioKind::kPendulum) return total_ticks_ - ticks_with_state_;
+    return complete() ? 0 : total_ticks_ - ticks_;
+  }
+
+ private:
+  sim::ScenarioKind kind_;
+  double period_;
+  std::int64_t total_ticks_;
+  std::int64_t ticks_ = 0;             // last tick seen
+  std::int64_t ticks_with_state_ = 0;  // pendulum: tick-boundary states used
+  std::int64_t states_ = 0;
+  double cost_ = 0;
+  bool have_start_ = false;
+  double start_[2] = {0, 0}, now_[2] = {0, 0};
+  double last_time_ = -1;
+};
+
+}  // namespace ahhs::episode

@@ -1,0 +1,488 @@
+"""What the ahhs-report commands share: the run reader, statistics, figures, replays through
+ahhs-replay and the output folder's rules (docs/analysis.md). Imports no other report module."""
+import json
+import math
+import os
+import shutil
+import sqlite3
+import subprocess
+import sys
+from collections import OrderedDict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
+from scipy import stats  # noqa: E402
+
+
+class ReportError(Exception):
+    """A problem with the input; the message is for the user."""
+
+
+class UsageError(Exception):
+    """A usage error: exit 2."""
+
+
+# ---------------------------------------------------------------------------------------------
+# Reading runs
+
+
+class Run:
+    def __init__(self, path, prefer_summary=False):
+        """prefer_summary: a complete run of a study is read from its summary and exports
+        (summary.json, generations.csv, best.json) without opening its database."""
+        self.path = path
+        if not os.path.isdir(path):
+            raise ReportError(f"{path} is not a directory")
+        db = os.path.join(path, "run.sqlite")
+        summary = os.path.join(path, "summary.json")
+        self.exported = os.path.isfile(summary) and (prefer_summary or not os.path.isfile(db))
+        if self.exported:  # a run of a study export: summary.json, generations.csv, best.json
+            self._load_export(summary)
+            return
+        if not os.path.isfile(db):
+            raise ReportError(f"{path} is not a run directory (no run.sqlite)")
+        try:
+            con = sqlite3.connect(f"file:{db}?mode=ro", uri=True)
+            if con.execute("PRAGMA quick_check").fetchone()[0] != "ok":
+                raise ReportError(f"{path}: the run database fails its integrity check")
+            meta = dict(con.execute("SELECT key, value FROM run").fetchall())
+            if meta.get("format") != "ahhs-run":
+                raise ReportError(f"{path}: the database is not an ahhs run")
+            self.config = json.loads(meta["config"])
+            self.run_id = meta.get("run_id", "")
+            rows = con.execute(
+                "SELECT generation, best, mean, median, worst, best_index FROM generations "
+                "ORDER BY generation").fetchall()
+            con.close()
+        except sqlite3.DatabaseError as e:
+            raise ReportError(f"{path}: not a readable run database ({e})")
+        except (KeyError, ValueError) as e:
+            raise ReportError(f"{path}: damaged run table ({e})")
+        if not rows:
+            raise ReportError(f"{path}: the run has no committed generation yet")
+        self.generation = np.array([r[0] for r in rows])
+        self.best = np.array([r[1] for r in rows])
+        self.mean = np.array([r[2] for r in rows])
+        self.median = np.array([r[3] for r in rows])
+
+    def _load_export(self, summary):
+        try:
+            with open(summary) as f:
+                meta = json.load(f)
+            if meta.get("format") != "ahhs-study-run":
+                raise ReportError(f"{self.path}: summary.json is not an ahhs-study run summary")
+            self.config = meta["evolve_config"]
+            self.run_id = meta.get("run_id", "")
+            rows = np.atleast_1d(np.genfromtxt(os.path.join(self.path, "generations.csv"),
+                                               delimiter=",", names=True))
+        except (OSError, ValueError, KeyError) as e:
+            raise ReportError(f"{self.path}: not a readable exported run ({e})")
+        if len(rows) == 0:
+            raise ReportError(f"{self.path}: the exported run has no generation")
+        self.generation = rows["generation"].astype(int)
+        self.best = rows["best"]
+        self.mean = rows["mean"]
+        self.median = rows["median"]
+
+    def replay_argv(self):
+        """ahhs-replay's arguments for this run's best genome (a run directory, or an exported
+        best.json with its configuration)."""
+        if not self.exported:
+            return [self.path]
+        c = self.config
+        return ["--genome", os.path.join(self.path, "best.json"), "--scenario", c["scenario"],
+                "--joints", c["joints"], "--modules", str(c["modules"]),
+                "--duration", repr(float(c["duration"]))]
+
+    @property
+    def task(self):
+        c = self.config
+        return c["scenario"] + ("-" + c["joints"] if c["scenario"] == "gait" else "")
+
+    @property
+    def label(self):
+        c = self.config
+        task = c["scenario"] + ("-" + c["joints"] if c["scenario"] == "gait" else "")
+        return f"{task} {c['variant'].upper()}-{c['rules']}"
+
+    def best_overall(self):
+        return float(np.max(self.best))
+
+    def first_generation_reaching(self, level):
+        hits = np.nonzero(self.best >= level)[0]
+        return int(self.generation[hits[0]]) if len(hits) else None
+
+
+def rank_sum_test(x, y):
+    """Two-sided Wilcoxon rank-sum test; returns (U of x, p). Exact when scipy can be."""
+    result = stats.mannwhitneyu(x, y, alternative="two-sided", method="auto")
+    return float(result.statistic), float(result.pvalue)
+
+
+# ---------------------------------------------------------------------------------------------
+# Figures
+
+
+def save(fig, out_dir, name, written):
+    for ext in ("png", "svg"):
+        path = os.path.join(out_dir, f"{name}.{ext}")
+        fig.savefig(path, dpi=110, bbox_inches="tight")
+        written.append(path)
+    plt.close(fig)
+
+
+def tasks_of(groups):
+    """Configuration labels grouped by task, in order: tasks never share a fitness axis."""
+    tasks = OrderedDict()
+    for label, runs in groups.items():
+        tasks.setdefault(runs[0].task, []).append(label)
+    return tasks
+
+
+def fitness_figure(groups, out_dir, written):
+    tasks = tasks_of(groups)
+    fig, axes = plt.subplots(len(tasks), 1, figsize=(8, 3.6 * len(tasks) + 0.4), squeeze=False)
+    for ax, (task, labels) in zip(axes[:, 0], tasks.items()):
+        for label in labels:
+            runs = groups[label]
+            if len(runs) == 1:
+                r = runs[0]
+                line, = ax.plot(r.generation, r.best, label=f"{label}: best (n=1)")
+                ax.plot(r.generation, r.mean, "--", color=line.get_color(), label=f"{label}: mean")
+            else:
+                n = min(len(r.best) for r in runs)
+                best = np.array([r.best[:n] for r in runs])
+                g = runs[0].generation[:n]
+                q1, med, q3 = np.percentile(best, [25, 50, 75], axis=0)
+                line, = ax.plot(g, med, label=f"{label}: median best (n={len(runs)})")
+                ax.fill_between(g, q1, q3, color=line.get_color(), alpha=0.25)
+        ax.set_xlabel("generation")
+        ax.set_ylabel(f"fitness ({task})")
+        ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+        ax.set_title(f"{task}: fitness per generation" + (" (band: quartiles)" if any(
+            len(groups[l]) > 1 for l in labels) else ""), fontsize=10)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    save(fig, out_dir, "fitness", written)
+
+
+def box_figure(groups, values, ylabel, title, name, out_dir, written, integer=False):
+    """One panel per task. A configuration with fewer than 2 runs is drawn as its points, without
+    a box, and takes part in no test; tests compare configurations of one task only."""
+    tasks = tasks_of(groups)
+    width = max(4, 2.2 * max(len(l) for l in tasks.values()))
+    fig, axes = plt.subplots(1, len(tasks), figsize=(width * len(tasks), 4.8), squeeze=False)
+    tests = []
+    for ax, (task, labels) in zip(axes[0, :], tasks.items()):
+        data = [values[l] for l in labels]
+        boxed = [i for i, d in enumerate(data) if len(d) >= 2]
+        if boxed:
+            ax.boxplot([data[i] for i in boxed], positions=[i + 1 for i in boxed], widths=0.5)
+        for i, d in enumerate(data):
+            if len(d) < 2:
+                ax.plot([i + 1] * len(d), d, "o", color="black")
+        ax.set_xticks(range(1, len(labels) + 1))
+        ax.set_xticklabels([f"{l}\nn={len(d)}" for l, d in zip(labels, data)], fontsize=8)
+        ax.set_xlim(0.5, len(labels) + 0.5)
+        ax.set_ylabel(ylabel)
+        ax.set_title(task, fontsize=10)
+        ax.grid(alpha=0.3, axis="y")
+        if integer:
+            ax.yaxis.set_major_locator(MaxNLocator(integer=True))
+        flat = [v for d in data for v in d]
+        top, span = max(flat), (max(flat) - min(flat)) or 1
+        k = 0
+        for i in boxed:
+            for j in boxed:
+                if j <= i:
+                    continue
+                u, p = rank_sum_test(data[i], data[j])
+                tests.append((labels[i], labels[j], len(data[i]), len(data[j]), u, p))
+                y = top + span * (0.08 + 0.1 * k)
+                ax.plot([i + 1, j + 1], [y, y], color="black", lw=0.8)
+                ax.text((i + j + 2) / 2, y, f"p = {p:.3g}", ha="center", va="bottom", fontsize=8)
+                k += 1
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    save(fig, out_dir, name, written)
+    return tests
+
+
+SENSOR_NAMES = {
+    "gait": ["up", "forward", "down", "back"],
+    "pendulum": ["upper left", "upper right", "lower left", "lower right", "wall left",
+                 "wall right", "speed left", "speed right", "spin ccw", "spin cw"],
+}
+
+
+def sensor_name(task, j):
+    names = SENSOR_NAMES["pendulum" if task == "pendulum" else "gait"]
+    return f"S{j} {names[j]}" if j < len(names) else f"S{j}"
+
+
+def replay_figures(trace_csv, rules_csv, body_csv, task, out_dir, written):
+    data = np.genfromtxt(trace_csv, delimiter=",", names=True)
+    names = data.dtype.names
+    modules = sorted(set(int(m) for m in data["module"]))
+    hormones = [n for n in names if n[0] == "h" and n[1:].isdigit()]
+    sensors = [n for n in names if n[0] == "s" and n[1:].isdigit()]
+    actuators = [n for n in names if n[0] == "a" and n[1:].isdigit()]
+    used = [h for h in hormones if np.max(data[h]) > 1e-3]
+    pendulum = task == "pendulum"
+    # Hormone concentrations through the organism: one panel per hormone, a line per module.
+    shown = used or hormones[:1]
+    fig, axes = plt.subplots(len(shown), 1, figsize=(8, 1.9 * len(shown) + 0.6), sharex=True,
+                             squeeze=False)
+    for ax, h in zip(axes[:, 0], shown):
+        for m in modules:
+            rows = data["module"] == m
+            ax.plot(data["time"][rows], data[h][rows], lw=0.9, label=f"module {m}")
+        ax.set_ylabel(h.upper())
+        ax.set_ylim(-0.02, 1.02)
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize=7, ncol=len(modules))
+    axes[-1, 0].set_xlabel("simulated time (s)")
+    fig.suptitle(f"Hormone concentrations in every module ({len(used)} of {len(hormones)} "
+                 f"hormones ever above 0.001)", fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, 0.98))
+    save(fig, out_dir, "hormones", written)
+    # The body and the commands: the pendulum's angle and cart, or the gait's hinges; then every
+    # module's own actuator values.
+    body = np.genfromtxt(body_csv, delimiter=",", names=True)
+    fig, axes = plt.subplots(3 if pendulum else 2, 1, figsize=(8, 7.5 if pendulum else 5),
+                             sharex=True)
+    if pendulum:
+        angle = np.degrees(np.angle(np.exp(1j * body["pole_angle"])))
+        # Break the line where the angle wraps at +-180 (a pass through the bottom), so that no
+        # vertical stroke suggests a swing through the top.
+        time = body["time"].astype(float)
+        jumps = np.nonzero(np.abs(np.diff(angle)) > 180)[0] + 1
+        angle = np.insert(angle, jumps, np.nan)
+        time = np.insert(time, jumps, np.nan)
+        axes[0].plot(time, angle, lw=0.8, color="tab:purple")
+        axes[0].set_ylabel("pole angle (deg)\n0 = upright")
+        axes[0].set_ylim(-185, 185)
+        axes[0].set_yticks([-180, -90, 0, 90, 180])
+        axes[1].plot(body["time"], body["cart_x"], lw=0.9, color="tab:brown")
+        axes[1].set_ylabel("cart position (m)")
+        command_ax = axes[2]
+        for m in modules:
+            rows = data["module"] == m
+            a = actuators[m] if m < len(actuators) else actuators[0]
+            command_ax.plot(data["time"][rows], data[a][rows], lw=0.9,
+                            label=f"module {m} ({'left' if m == 0 else 'right'}): {a.upper()}")
+        title = "Pendulum: angle, cart and the two compartments' commands"
+        name = "trace"
+    else:
+        for m in modules:
+            rows = data["module"] == m
+            axes[0].plot(data["time"][rows], np.degrees(data["hinge_angle"][rows]), lw=0.9,
+                         label=f"module {m}")
+        axes[0].set_ylabel("hinge angle (deg)")
+        axes[0].legend(fontsize=7, ncol=len(modules))
+        command_ax = axes[1]
+        for m in modules:
+            rows = data["module"] == m
+            command_ax.plot(data["time"][rows], data[actuators[0]][rows], lw=0.9,
+                            label=f"module {m}")
+        title = (f"Gait: hinge angles and commands (centroid moved "
+                 f"{np.hypot(body['centroid_x'][-1] - body['centroid_x'][0], body['centroid_y'][-1] - body['centroid_y'][0]):.2f} m)")
+        name = "hinges"
+    command_ax.set_ylabel("actuator value")
+    command_ax.set_ylim(-1.05, 1.05)
+    command_ax.legend(fontsize=7, ncol=len(modules))
+    command_ax.set_xlabel("simulated time (s)")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    save(fig, out_dir, name, written)
+    # Sensors: one panel per module, one colour per sensor in every panel, named.
+    colours = plt.get_cmap("tab10")
+    fig, axes = plt.subplots(len(modules), 1, figsize=(8, 1.6 * len(modules) + 0.8),
+                             sharex=True, squeeze=False)
+    for ax, m in zip(axes[:, 0], modules):
+        rows = data["module"] == m
+        for j, s in enumerate(sensors):
+            if np.max(data[s][rows]) > 0:
+                ax.plot(data["time"][rows], data[s][rows], lw=0.7, color=colours(j % 10),
+                        label=sensor_name(task, j))
+        ax.set_ylabel(f"module {m}")
+        ax.set_ylim(-0.02, 1.02)
+        ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    axes[-1, 0].set_xlabel("simulated time (s)")
+    fig.suptitle("Sensor values (absent slots not drawn)", fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, 0.97))
+    save(fig, out_dir, "sensors", written)
+    # Rule activity: share of ticks in which each rule triggered, per module.
+    rules = np.atleast_1d(np.genfromtxt(rules_csv, delimiter=",", names=True, dtype=None))
+    ticks = len(data) / len(modules)
+    n_rules = int(np.max(rules["rule"])) + 1 if len(rules) else 0
+    share = np.zeros((len(modules), n_rules))
+    parts = np.zeros((n_rules, 4))  # per part: the largest share over the modules
+    for row in rules:
+        r = int(row["rule"])
+        share[int(row["module"]), r] = row["ticks_active"] / ticks
+        for k, part in enumerate(("sensor", "linear", "nonlinear", "actuator")):
+            parts[r, k] = max(parts[r, k], row[part] / ticks)
+    fig, ax = plt.subplots(figsize=(max(6, 0.25 * n_rules + 2), 4))
+    width = 0.8 / max(1, len(modules))
+    for k, m in enumerate(modules):
+        ax.bar(np.arange(n_rules) + k * width, share[k], width=width, label=f"module {m}")
+    ax.axhline(0.01, color="gray", lw=0.8, ls="--")
+    ax.set_xlabel("rule")
+    ax.set_ylabel("share of ticks triggered")
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.set_title("Rule activity (dashed: 1 %, below it a rule triggers 'seldom')", fontsize=10)
+    ax.legend(fontsize=7, ncol=len(modules))
+    save(fig, out_dir, "rules", written)
+    overall = share.max(axis=0) if n_rules else np.array([])
+    return {
+        "hormones_used": len(used),
+        "hormones": len(hormones),
+        "rules": n_rules,
+        "never": int(np.sum(overall == 0)),
+        "seldom": int(np.sum((overall > 0) & (overall < 0.01))),
+        "parts": parts,
+    }
+
+
+def rule_parts(rules_csv, ticks):
+    """Per rule and part (sensor, linear, nonlinear, actuator): the largest share of ticks it
+    triggered in any module."""
+    rules = np.atleast_1d(np.genfromtxt(rules_csv, delimiter=",", names=True, dtype=None))
+    n_rules = int(np.max(rules["rule"])) + 1 if len(rules) else 0
+    parts = np.zeros((n_rules, 4))
+    for row in rules:
+        for k, part in enumerate(("sensor", "linear", "nonlinear", "actuator")):
+            parts[int(row["rule"]), k] = max(parts[int(row["rule"]), k], row[part] / ticks)
+    return parts
+
+
+def rule_edges(genome, parts, threshold=0.0):
+    """The rule parts that triggered in more than `threshold` of the ticks (parts: rule_parts):
+    (rule, part, source, target, positive, share), sources and targets named S<i>, H<i>, A<i>."""
+    kinds = ("sensor", "linear", "nonlinear", "actuator")
+    for r, rule in enumerate(genome["rules"]):
+        for k, part in enumerate(kinds):
+            active = parts[r, k] if r < len(parts) else 0
+            if active <= threshold:
+                continue
+            if genome["variant"] == "ahhs2":
+                s, i = int(math.floor(rule["sensor"])), int(math.floor(rule["input"]))
+                o, a = int(math.floor(rule["output"])), int(math.floor(rule["actuator"]))
+                src = f"S{s}" if part == "sensor" else f"H{i}"
+                dst = f"A{a}" if part == "actuator" else f"H{o}"
+            else:
+                if rule["type"] != part:
+                    continue
+                src = f"S{rule['input']}" if part == "sensor" else f"H{rule['input']}"
+                dst = f"A{rule['output']}" if part == "actuator" else f"H{rule['output']}"
+            yield r, part, src, dst, rule["lambda"] >= 0, active
+
+
+def controller_graph(genome, parts, out_dir, written, name="controller", task="gait"):
+    """Sensors -> hormones -> actuators: one edge per rule part that triggered in the replay,
+    its width by the share of ticks it triggered (the most active module); parts that never
+    triggered are not drawn."""
+    lines = ["digraph controller {", "  rankdir=LR; node [fontsize=10]; edge [fontsize=8];"]
+    edge_lines, used = [], set()
+    edges = 0
+    for r, part, src, dst, positive, active in rule_edges(genome, parts):
+        tag = {"sensor": "S", "linear": "L", "nonlinear": "N", "actuator": "A"}[part]
+        colour = "black" if positive else "firebrick"
+        pct = f"{100 * active:.0f}%" if active >= 0.01 else f"{100 * active:.1g}%"
+        edge_lines.append(f'  {src} -> {dst} [label="r{r} {tag} {pct}", '
+                          f'color={colour}, penwidth={0.6 + 4 * active:.2f}];')
+        used.update((src, dst))
+        edges += 1
+    # Only the sensors, hormones and actuators that an active rule part touches.
+    pick = lambda p: sorted((n for n in used if n[0] == p), key=lambda n: int(n[1:]))
+    if pick("S"):
+        lines.append("  { rank=same; " + " ".join(
+            f'{n} [shape=box, color=blue, label="{sensor_name(task, int(n[1:]))}"];'
+            for n in pick("S")) + " }")
+    if pick("H"):
+        lines.append("  " + " ".join(f"{n} [shape=ellipse, color=darkgreen];" for n in pick("H")))
+    if pick("A"):
+        lines.append("  { rank=same; " + " ".join(f"{n} [shape=box, color=red];"
+                                                    for n in pick("A")) + " }")
+    lines += edge_lines
+    lines.append("}")
+    dot_path = os.path.join(out_dir, f"{name}.dot")
+    with open(dot_path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    written.append(dot_path)
+    dot = shutil.which("dot")
+    if not dot:
+        raise ReportError("Graphviz 'dot' not found (install graphviz: tools/install-deps)")
+    for ext in ("png", "svg"):
+        path = os.path.join(out_dir, f"{name}.{ext}")
+        subprocess.run([dot, f"-T{ext}", dot_path, "-o", path], check=True)
+        written.append(path)
+    return edges
+
+
+# ---------------------------------------------------------------------------------------------
+# Commands
+
+
+def find_bin(args):
+    for d in (args.bin, os.environ.get("AHHS_BIN"), os.path.dirname(os.path.abspath(sys.argv[0]))):
+        if d and os.path.isfile(os.path.join(d, "ahhs-replay")):
+            return d
+    raise ReportError("cannot find ahhs-replay: give --bin BUILD/bin")
+
+
+def run_replay(bin_dir, argv):
+    proc = subprocess.run([os.path.join(bin_dir, "ahhs-replay")] + argv, capture_output=True,
+                          text=True)
+    if proc.returncode != 0:
+        raise ReportError("ahhs-replay failed: " + (proc.stderr or proc.stdout).strip())
+    return proc.stdout
+
+
+def filmstrip(bin_dir, log, png, written):
+    """8 frames of the replayed episode in one PNG (ahhs-view with headless Chromium); what was
+    done, for summary.md."""
+    if not shutil.which("chromium"):
+        return "filmstrip: not made, chromium is not installed (tools/install-deps)"
+    proc = subprocess.run([os.path.join(bin_dir, "ahhs-view"), log, "--filmstrip", png,
+                           "--overwrite"], capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise ReportError("ahhs-view --filmstrip failed: " + (proc.stderr or proc.stdout).strip())
+    written.append(png)
+    return "filmstrip of the replay, 8 frames across the episode: `best-filmstrip.png`"
+
+
+REPORT_FILES = (".png", ".svg", ".dot", ".md", ".csv", ".json", ".lcm", ".mp4")
+
+
+def is_report_file(path, allow_dirs):
+    if os.path.isdir(path) and not os.path.islink(path):
+        return allow_dirs and all(is_report_file(os.path.join(path, f), True)
+                                  for f in os.listdir(path))
+    return os.path.isfile(path) and path.endswith(REPORT_FILES)
+
+
+def prepare_out(out, overwrite, allow_dirs=False):
+    """Makes the output directory. An old report in it is replaced only with --overwrite (so
+    that no stale figure survives); a directory holding anything else is never emptied. A study
+    report (allow_dirs) has subdirectories of report files."""
+    if os.path.isdir(out) and os.listdir(out):
+        if not overwrite:
+            raise UsageError(f"{out} holds files; pass --overwrite to replace the report in it")
+        foreign = [f for f in os.listdir(out)
+                   if not is_report_file(os.path.join(out, f), allow_dirs)]
+        if foreign:
+            raise UsageError(f"{out} holds {foreign[0]}, which is not part of a report; "
+                             "give an empty or new directory")
+        for f in os.listdir(out):
+            path = os.path.join(out, f)
+            shutil.rmtree(path) if os.path.isdir(path) else os.remove(path)
+    os.makedirs(out, exist_ok=True)

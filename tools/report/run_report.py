@@ -1,0 +1,153 @@
+"""ahhs-report RUN_DIR... and ahhs-report neighbourhood: figures and a Markdown summary for
+ahhs-evolve runs, and the mutation neighbourhood of a genome (docs/analysis.md)."""
+import json
+import math
+import os
+from collections import OrderedDict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
+
+from report_lib import (ReportError, Run, box_figure, controller_graph, filmstrip,  # noqa: E402
+                        find_bin, fitness_figure, prepare_out, replay_figures, rule_parts,
+                        run_replay, save)
+
+
+def report_runs(args):
+    runs = [p if isinstance(p, Run) else Run(p) for p in args.runs]
+    prepare_out(args.out, args.overwrite)
+    written = []
+    groups = OrderedDict()
+    for r in runs:
+        groups.setdefault(r.label, []).append(r)
+    fitness_figure(groups, args.out, written)
+    # 75 % of the maximum over all runs of the same task.
+    overall = {}
+    for r in runs:
+        overall[r.task] = max(overall.get(r.task, -math.inf), r.best_overall())
+    level = {t: 0.75 * m for t, m in overall.items()}
+    best = {l: [r.best_overall() for r in rs] for l, rs in groups.items()}
+    speed = {}
+    censored = 0
+    for l, rs in groups.items():
+        speed[l] = []
+        for r in rs:
+            g = r.first_generation_reaching(level[r.task])
+            if g is None:
+                g, censored = int(r.generation[-1]) + 1, censored + 1
+            speed[l].append(g)
+    best_tests = box_figure(groups, best, "best fitness of the run",
+                            "Best fitness per configuration (two-sided Wilcoxon rank-sum, n >= 2)",
+                            "box_best", args.out, written)
+    speed_tests = box_figure(groups, speed, "generation",
+                             "Generation reaching 75 % of the task's maximum fitness",
+                             "box_speed", args.out, written, integer=True)
+    md = ["# AHHS run report", ""]
+    md += ["| configuration | runs | best fitness: median | min | max | generation to 75 %: median |",
+           "|---|---|---|---|---|---|"]
+    for l in groups:
+        b, s = best[l], speed[l]
+        md.append(f"| {l} | {len(b)} | {np.median(b):.4f} | {min(b):.4f} | {max(b):.4f} | "
+                  f"{np.median(s):g} |")
+    md += [""] + [f"Maximum fitness over all {t} runs: {m:.4f}; 75 % of it is {level[t]:.4f}."
+                  for t, m in overall.items()]
+    md += ["Tests compare configurations of the same task only."]
+    if censored:
+        md.append(f"{censored} run(s) never reached it and count as their number of generations.")
+    for title, tests in (("Best fitness", best_tests), ("Evolution speed", speed_tests)):
+        if tests:
+            md += ["", f"## {title}: two-sided Wilcoxon rank-sum tests", "",
+                   "| A | B | n_A | n_B | U | p |", "|---|---|---|---|---|---|"]
+            md += [f"| {a} | {b} | {na} | {nb} | {u:g} | {p:.4g} |" for a, b, na, nb, u, p in tests]
+    md += ["", "## Runs", ""] + [f"- `{r.path}`: {r.label}, seed {r.config['seed']}, "
+                                 f"{len(r.generation)} generations, best {r.best_overall():.4f}"
+                                 for r in runs]
+    if not args.no_replay:
+        bin_dir = find_bin(args)
+        first = runs[0]
+        trace = os.path.join(args.out, "replay-trace.csv")
+        rules = os.path.join(args.out, "replay-rules.csv")
+        log = os.path.join(args.out, "replay.lcm")
+        body = os.path.join(args.out, "replay-body.csv")
+        out = run_replay(bin_dir, first.replay_argv() + ["--csv", trace, "--rules-csv", rules,
+                                                         "--log", log,
+                                   "--body-csv", body])
+        written += [trace, rules, log, body]
+        info = replay_figures(trace, rules, body, first.task, args.out, written)
+        with open(os.path.join(first.path, "best.json")) as f:
+            genome = json.load(f)
+        edges = controller_graph(genome, info["parts"], args.out, written, task=first.task)
+        check = [l for l in out.splitlines() if l.startswith("stored fitness")]
+        strip = filmstrip(bin_dir, log, os.path.join(args.out, "best-filmstrip.png"), written)
+        md += ["", f"## The best controller of `{first.path}`", "",
+               "Replayed with `ahhs-replay` (log: `replay.lcm`): " + (check[0] if check else out.strip()),
+               "",
+               f"- hormones ever above 0.001: {info['hormones_used']} of {info['hormones']}",
+               f"- rules that never trigger: {info['never']} of {info['rules']}; seldom (< 1 % of "
+               f"ticks): {info['seldom']}",
+               f"- controller graph: {edges} edges (one per rule part that triggered in the replay, "
+               "its width by the share of ticks)",
+               f"- {strip}"]
+    md += ["", "## Figures", ""] + [f"- `{os.path.basename(p)}`" for p in written
+                                    if p.endswith(".png")]
+    summary = os.path.join(args.out, "summary.md")
+    with open(summary, "w") as f:
+        f.write("\n".join(md) + "\n")
+    print(f"report written to {args.out}: summary.md and {len(written)} files")
+
+
+def report_neighbourhood(args):
+    prepare_out(args.out, args.overwrite)
+    bin_dir = find_bin(args)
+    csv = os.path.join(args.out, "mutants.csv")
+    if os.path.isdir(args.genome):
+        Run(args.genome)  # a clear error for a directory that is not a run
+        argv = [args.genome]
+        genome_path = os.path.join(args.genome, "best.json")
+    else:
+        if not os.path.isfile(args.genome):
+            raise ReportError(f"{args.genome}: no such genome file or run directory")
+        argv = ["--genome", args.genome, "--scenario", args.scenario, "--joints", args.joints,
+                "--modules", str(args.modules), "--duration", str(args.duration),
+                "--seed", str(args.seed)]
+        genome_path = args.genome
+    rules = os.path.join(args.out, "rules.csv")
+    body = os.path.join(args.out, "body.csv")
+    run_replay(bin_dir, argv + ["--mutants", str(args.mutants), "--mutants-csv", csv,
+                                "--mutant-seed", str(args.mutant_seed), "--rules-csv", rules,
+                                "--body-csv", body])
+    data = np.genfromtxt(csv, delimiter=",", names=True, dtype=None, encoding="utf-8")
+    original = float(data["fitness"][0])
+    mutants = np.array([float(v) for v in data["fitness"][1:]])
+    written = [csv]
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.hist(mutants, bins=min(20, max(5, len(mutants) // 2)), color="steelblue",
+            label=f"{len(mutants)} single mutants")
+    ax.axvline(original, color="firebrick", lw=2, label=f"original {original:.3f}")
+    ax.set_xlabel("fitness")
+    ax.set_ylabel("mutants")
+    ax.yaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.set_title("Mutation neighbourhood", fontsize=10)
+    ax.legend(fontsize=8)
+    save(fig, args.out, "neighbourhood", written)
+    written += [rules, body]
+    ticks = max(1, len(np.atleast_1d(np.genfromtxt(body, delimiter=",", names=True))))
+    task = "pendulum" if args.scenario == "pendulum" and not os.path.isdir(args.genome) else (
+        Run(args.genome).task if os.path.isdir(args.genome) else f"gait-{args.joints}")
+    with open(genome_path) as f:
+        controller_graph(json.load(f), rule_parts(rules, ticks), args.out, written, task=task)
+    keep = np.mean(mutants >= 0.9 * original) if original > 0 else float("nan")
+    md = ["# Mutation neighbourhood", "", f"Genome: `{genome_path}`; {len(mutants)} single mutants "
+          f"(mutation seed {args.mutant_seed}), each evaluated with the same episode seed.", "",
+          f"- original fitness: {original:.4f}",
+          f"- mutants: median {np.median(mutants):.4f}, min {mutants.min():.4f}, max {mutants.max():.4f}",
+          f"- share keeping at least 90 % of the original fitness: {keep:.0%}",
+          f"- share below 0.2: {np.mean(mutants < 0.2):.0%}", "",
+          "Figures: `neighbourhood.png`, `controller.png`."]
+    with open(os.path.join(args.out, "summary.md"), "w") as f:
+        f.write("\n".join(md) + "\n")
+    print(f"neighbourhood written to {args.out}: summary.md, neighbourhood.png")

@@ -35,6 +35,9 @@ int RunChildToEnd(const std::vector<std::string>& argv,
 // "exit status N" or "killed by signal N" for a waitpid status.
 std::string DescribeExit(int status);
 
+// This machine's host name ("localhost" when it has none): names workers and runs.
+std::string HostName();
+
 // A set of named children. The destructor stops those still running (SIGTERM, then SIGKILL).
 class ChildProcesses {
  public:

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "base/atomic_file.h"
+#include "base/format.h"
 #include "base/temp_files.h"
 #include "bus/channels.h"
 #include "bus/codec.h"
@@ -64,12 +65,6 @@ class LogWriter {
 };
 
 using TextWriter = base::AtomicTextFile;
-
-std::string Exact(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
 
 }  // namespace
 
@@ -159,21 +154,23 @@ void EpisodeRecorder::Observe(const DirectTick& t) {
       int active = 0;
       for (auto fired : m.rule_active) active += fired;
       auto& o = files_->csv->out();
-      o << t.tick << ',' << Exact(time) << ',' << c << ',' << Exact(m.hinge_angle);
-      for (double v : s) o << ',' << Exact(v);
-      for (double v : m.hormones) o << ',' << Exact(v);
-      for (double v : m.actuators) o << ',' << Exact(v);
+      o << t.tick << ',' << base::ExactDouble(time) << ',' << c << ','
+        << base::ExactDouble(m.hinge_angle);
+      for (double v : s) o << ',' << base::ExactDouble(v);
+      for (double v : m.hormones) o << ',' << base::ExactDouble(v);
+      for (double v : m.actuators) o << ',' << base::ExactDouble(v);
       o << ',' << active << '\n';
     }
   }
   if (files_->body) {
     auto& o = files_->body->out();
-    o << t.tick << ',' << Exact(time);
+    o << t.tick << ',' << base::ExactDouble(time);
     if (const auto* p = dynamic_cast<const sim::PendulumScenario*>(&sc)) {
-      o << ',' << Exact(p->state().x) << ',' << Exact(p->state().phi) << '\n';
+      o << ',' << base::ExactDouble(p->state().x) << ',' << base::ExactDouble(p->state().phi)
+        << '\n';
     } else if (const auto* g = dynamic_cast<const sim::GaitScenario*>(&sc)) {
       const auto c = g->Centroid();
-      o << ',' << Exact(c[0]) << ',' << Exact(c[1]) << '\n';
+      o << ',' << base::ExactDouble(c[0]) << ',' << base::ExactDouble(c[1]) << '\n';
     }
   }
   if (log) {

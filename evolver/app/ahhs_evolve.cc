@@ -20,6 +20,7 @@
 #include "base/children.h"
 #include "base/cli.h"
 #include "base/cli_toml.h"
+#include "base/format.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "episode/arena/post_eval.h"
@@ -39,12 +40,6 @@ namespace {
 std::atomic<int> g_interrupts{0};
 void OnSignal(int) {
   if (++g_interrupts >= 3) std::_Exit(130);  // the third Ctrl-C does not wait for anything
-}
-
-std::string HostName() {
-  char buf[256] = {0};
-  if (gethostname(buf, sizeof buf - 1) != 0) return "localhost";
-  return buf;
 }
 
 std::string FormatDuration(double s) {
@@ -301,8 +296,8 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
       std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&t));
       o.out_dir = std::string("runs/") + stamp + "-" + o.scenario;
     }
-    const std::string run_id =
-        HostName() + "-" + std::to_string(getpid()) + "-" + std::to_string(std::time(nullptr));
+    const std::string run_id = ahhs::base::HostName() + "-" + std::to_string(getpid()) + "-" +
+                               std::to_string(std::time(nullptr));
     store = ev::RunStore::Create(
         o.out_dir, run_id, config->seed, ev::ConfigToJson(*config),
         ahhs::sim::PhysicsVersion(config->scenario.kind, config->scenario.joints), o.overwrite);
@@ -319,9 +314,7 @@ void PrintSummary(const ev::RunStore& store, const ev::EvolveConfig& config) {
     replay += " --joints " + std::string(ahhs::sim::JointsName(config.scenario.joints)) +
               " --modules " + std::to_string(config.scenario.num_modules);
   if (config.scenario.duration > 0) {
-    char d[32];
-    std::snprintf(d, sizeof d, "%.17g", config.scenario.duration);
-    replay += std::string(" --duration ") + d;
+    replay += " --duration " + ahhs::base::ExactDouble(config.scenario.duration);
   }
   replay += ahhs::sim::EnvelopeArguments(config.scenario.envelope);
   replay += " --genome " + store.dir() + "/best.json --seed " + std::to_string(best.eval_seed);
@@ -445,11 +438,12 @@ int main(int argc, char** argv) {
   int restarts = 0;
   const std::string worker_bin = ahhs::base::ExecutableDir() + "/ahhs-worker";
   for (int k = 0; k < options.workers && first < config.ga.generations; ++k)
-    local.Start("local worker " + std::to_string(k),
-                {worker_bin, "--quiet", "--lcm-url", options.url, "--arena-kind", options.arena,
-                 "--run", store->run_id(), "--id",
-                 HostName() + ":" + std::to_string(getpid()) + "/w" + std::to_string(k)},
-                true);
+    local.Start(
+        "local worker " + std::to_string(k),
+        {worker_bin, "--quiet", "--lcm-url", options.url, "--arena-kind", options.arena, "--run",
+         store->run_id(), "--id",
+         ahhs::base::HostName() + ":" + std::to_string(getpid()) + "/w" + std::to_string(k)},
+        true);
 
   Progress progress(first, config.ga.generations);
   std::printf("run directory: %s\n", dir.c_str());

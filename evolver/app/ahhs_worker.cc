@@ -32,12 +32,6 @@ namespace {
 std::atomic<bool> g_stop{false};
 void OnSignal(int) { g_stop = true; }
 
-std::string HostName() {
-  char buf[256] = {0};
-  if (gethostname(buf, sizeof buf - 1) != 0) return "localhost";
-  return buf;
-}
-
 // The port of a udpm://GROUP:PORT[?...] URL, or -1.
 int UdpmPort(const std::string& url) {
   const std::string scheme = "udpm://";
@@ -152,7 +146,7 @@ int main(int argc, char** argv) {
   }
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
-  const std::string host = HostName();
+  const std::string host = ahhs::base::HostName();
   if (arena_url_option->count() == 0) arena_url = PrivateArenaUrl(url);
 
   if (slots > 1) {

@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "base/atomic_file.h"
+#include "base/format.h"
 #include "modules/core/genome_json.h"
 
 namespace ahhs::evolver {
@@ -204,12 +205,6 @@ void WriteExport(const fs::path& path, const std::string& text) {
   } catch (const std::runtime_error& e) {
     throw RunStoreError(e.what());
   }
-}
-
-std::string FormatDouble(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
 }
 
 // SQLite's WAL keeps its index in shared memory beside the database, which a network
@@ -865,9 +860,10 @@ void RunStore::Export(bool check_existing) const {
   csv << "generation,best,mean,median,worst,best_index,wall_time_s\n";
   const auto generations = LoadGenerationRecords();
   for (const auto& g : generations)
-    csv << g.generation << ',' << FormatDouble(g.stats.best) << ',' << FormatDouble(g.stats.mean)
-        << ',' << FormatDouble(g.stats.median) << ',' << FormatDouble(g.stats.worst) << ','
-        << g.stats.best_index << ',' << FormatDouble(g.wall_time) << '\n';
+    csv << g.generation << ',' << base::ExactDouble(g.stats.best) << ','
+        << base::ExactDouble(g.stats.mean) << ',' << base::ExactDouble(g.stats.median) << ','
+        << base::ExactDouble(g.stats.worst) << ',' << g.stats.best_index << ','
+        << base::ExactDouble(g.wall_time) << '\n';
   WriteExport(root / "generations.csv", csv.str());
   std::error_code ec;
   fs::create_directories(root / "best", ec);

@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 
+#include "base/format.h"
 #include "sim/core/envelope.h"
 
 namespace ahhs::sim {
@@ -22,9 +23,7 @@ inline std::string EnvelopeArguments(const Envelope& envelope) {
   for (const auto& k : EnvelopeKeys()) {
     const double w = envelope.*k.field;
     if (w == 0) continue;
-    char value[40];
-    std::snprintf(value, sizeof value, "%.17g", w);
-    args += std::string(" --") + k.name + " " + value;
+    args += std::string(" --") + k.name + " " + base::ExactDouble(w);
   }
   return args;
 }

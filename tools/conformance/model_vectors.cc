@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "base/format.h"
 #include "modules/core/hormone_system.h"
 #include "modules/core/random.h"
 #include "modules/core/variation.h"
@@ -57,15 +58,9 @@ std::vector<Outputs> Run(const Case& c) {
   return out;
 }
 
-std::string Number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 void Line(std::ostringstream& out, const char* key, const std::vector<double>& values) {
   out << key;
-  for (double v : values) out << ' ' << Number(v);
+  for (double v : values) out << ' ' << base::ExactDouble(v);
   out << '\n';
 }
 
@@ -343,7 +338,7 @@ std::string WriteModelVectors() {
       for (const auto& p : t.received) Line(out, "received", p);
       out << "sensors";
       for (std::size_t s = 0; s < t.sensors.size(); ++s)
-        out << ' ' << (t.sensor_present[s] ? Number(t.sensors[s]) : "-");
+        out << ' ' << (t.sensor_present[s] ? base::ExactDouble(t.sensors[s]) : "-");
       out << "\nactuators";
       for (char a : t.actuator_present) out << ' ' << (a ? 1 : 0);
       out << '\n';
@@ -379,8 +374,8 @@ std::string CheckModelVectors(const std::string& text) {
           for (std::size_t i = 0; i < want->size(); ++i)
             if ((*want)[i] != (*have)[i] || std::signbit((*want)[i]) != std::signbit((*have)[i]))
               return "case " + c.name + " tick " + std::to_string(k) + ": " + key + "[" +
-                     std::to_string(i) + "] is " + Number((*want)[i]) + ", modules/core gives " +
-                     Number((*have)[i]);
+                     std::to_string(i) + "] is " + base::ExactDouble((*want)[i]) +
+                     ", modules/core gives " + base::ExactDouble((*have)[i]);
     }
     if (cases == 0) return "no case in the file";
   } catch (const std::exception& e) {

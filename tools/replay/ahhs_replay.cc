@@ -21,6 +21,7 @@
 #include "base/atomic_file.h"
 #include "base/children.h"
 #include "base/cli.h"
+#include "base/format.h"
 #include "base/temp_files.h"
 #include "episode/arena/direct_arena.h"
 #include "episode/arena/episode.h"
@@ -49,12 +50,6 @@ std::string HashText(const am::Genome& genome) {
   std::snprintf(hash, sizeof hash, "%016llx",
                 static_cast<unsigned long long>(am::GenomeHash(genome)));
   return hash;
-}
-
-std::string Exact(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
 }
 
 }  // namespace
@@ -207,8 +202,8 @@ int main(int argc, char** argv) {
           stored_fitness = record.trials.front().evaluation.fitness;
           what += ", trial 0 of " + std::to_string(record.trials.size()) + " (the " +
                   ev::AggregateName(config.ga.aggregate) + " of all " +
-                  std::to_string(record.trials.size()) + " is " + Exact(record.evaluation.fitness) +
-                  ")";
+                  std::to_string(record.trials.size()) + " is " +
+                  ahhs::base::ExactDouble(record.evaluation.fitness) + ")";
         }
       }
     } else {
@@ -284,15 +279,15 @@ int main(int argc, char** argv) {
     if (mutants > 0) {
       TextWriter out(mutants_csv);
       out.out() << "mutant,fitness,genome_hash\n";
-      out.out() << "original," << Exact(result.ok ? result.fitness : 0) << ','
+      out.out() << "original," << ahhs::base::ExactDouble(result.ok ? result.fitness : 0) << ','
                 << am::GenomeHash(spec.genome) << '\n';
       am::Rng rng(mutant_seed);
       for (int k = 0; k < mutants; ++k) {
         ep::EpisodeSpec mutant = spec;
         am::MutateOneGene(&mutant.genome, mutation, rng);
         const ep::EpisodeResult r = ep::RunDirectEpisode(mutant);
-        out.out() << k << ',' << Exact(r.ok ? r.fitness : 0) << ',' << am::GenomeHash(mutant.genome)
-                  << '\n';
+        out.out() << k << ',' << ahhs::base::ExactDouble(r.ok ? r.fitness : 0) << ','
+                  << am::GenomeHash(mutant.genome) << '\n';
       }
       out.Commit();
       std::printf("%d single mutants evaluated into %s\n", mutants, mutants_csv.c_str());
@@ -303,8 +298,10 @@ int main(int argc, char** argv) {
         TextWriter out(robustness_csv);
         out.out() << "friction_scale,fitness\n";
         for (std::size_t i = 0; i < r.scales.size(); ++i)
-          out.out() << Exact(r.scales[i]) << ','
-                    << (std::isnan(r.fitnesses[i]) ? "failed" : Exact(r.fitnesses[i])) << '\n';
+          out.out() << ahhs::base::ExactDouble(r.scales[i]) << ','
+                    << (std::isnan(r.fitnesses[i]) ? "failed"
+                                                   : ahhs::base::ExactDouble(r.fitnesses[i]))
+                    << '\n';
         out.Commit();
       }
       std::printf("%s\n", r.Describe(result.ok ? result.fitness : 0).c_str());
@@ -329,21 +326,22 @@ int main(int argc, char** argv) {
     const double fitness = result.ok ? result.fitness : 0;
     if (stored_fitness) {
       if (*stored_fitness == fitness) {
-        std::printf("stored fitness %s: reproduced exactly\n", Exact(*stored_fitness).c_str());
+        std::printf("stored fitness %s: reproduced exactly\n",
+                    ahhs::base::ExactDouble(*stored_fitness).c_str());
       } else if (physics_step > 0 || friction_scale != 1 || !spec.config.envelope.none()) {
         std::printf(
             "stored fitness %s: in the changed physics (--physics-step, --friction-scale, "
             "--envelope) "
             "the replay differs by %.3g\n",
-            Exact(*stored_fitness).c_str(), fitness - *stored_fitness);
+            ahhs::base::ExactDouble(*stored_fitness).c_str(), fitness - *stored_fitness);
       } else {
         std::printf(
             "stored fitness %s: the replay differs by %.3g (the run was evaluated by a build "
             "whose physics or controller differ from this one)\n",
-            Exact(*stored_fitness).c_str(), fitness - *stored_fitness);
+            ahhs::base::ExactDouble(*stored_fitness).c_str(), fitness - *stored_fitness);
       }
     }
-    std::printf("fitness: %s\n", Exact(fitness).c_str());
+    std::printf("fitness: %s\n", ahhs::base::ExactDouble(fitness).c_str());
     std::fflush(stdout);
     for (const auto& [flag, out] :
          {std::pair<std::string, std::string>{"--video", video},
@@ -353,8 +351,8 @@ int main(int argc, char** argv) {
                                     out};
       if (overwrite) args.push_back("--overwrite");
       if (flag == "--video") {
-        args.insert(args.end(), {"--from", Exact(video_from)});
-        if (video_to >= 0) args.insert(args.end(), {"--to", Exact(video_to)});
+        args.insert(args.end(), {"--from", ahhs::base::ExactDouble(video_from)});
+        if (video_to >= 0) args.insert(args.end(), {"--to", ahhs::base::ExactDouble(video_to)});
       }
       if (const int code = ahhs::base::RunChildToEnd(args); code != 0) {
         std::cerr << "ahhs-replay: " << flag << " " << out << " failed (ahhs-view exit " << code

@@ -31,6 +31,7 @@
 #include "evolver/store/run_store.h"
 #include "modules/core/random.h"
 #include "sim/node/envelope_options.h"
+#include "sim/node/scenario_options.h"
 
 namespace ev = ahhs::evolver;
 using Clock = std::chrono::steady_clock;
@@ -127,13 +128,14 @@ class Progress {
 
 // The command line.
 struct Options {
-  std::string scenario = "gait", joints = "damped", variant = "ahhs2", out_dir, resume_dir,
-              arena = "direct", url = ahhs::bus::kDefaultLcmUrl, mutation_profile = "paper";
-  int modules = 5, hormones = 5, rules = 30, population = 20, generations = 200, elitism = 1,
-      workers = -1, trials = 1, post_eval = 0;
+  ahhs::sim::ScenarioOptions task;
+  std::string variant = "ahhs2", out_dir, resume_dir, arena = "direct",
+              url = ahhs::bus::kDefaultLcmUrl, mutation_profile = "paper";
+  int hormones = 5, rules = 30, population = 20, generations = 200, elitism = 1, workers = -1,
+      trials = 1, post_eval = 0;
   std::string aggregate = "mean", post_eval_envelope;
   ahhs::sim::EnvelopeOptions envelope;
-  double duration = 0, mutation_rate = 0.15, mutation_max_change = 0.1, crossover_rate = 0.05;
+  double mutation_rate = 0.15, mutation_max_change = 0.1, crossover_rate = 0.05;
   std::uint64_t seed = 1;
   double job_deadline = 300, worker_wait = 60;
   bool overwrite = false, show_config = false;
@@ -141,16 +143,7 @@ struct Options {
 
 void AddOptions(CLI::App& app, Options* o) {
   ahhs::cli::AddStrictTomlConfig(app, "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
-  app.add_option("--scenario", o->scenario, "gait or pendulum")
-      ->check(CLI::IsMember({"gait", "pendulum"}))
-      ->capture_default_str();
-  app.add_option("--joints", o->joints, "gait docking: damped or fixed")
-      ->check(CLI::IsMember({"damped", "fixed"}))
-      ->capture_default_str();
-  app.add_option("--modules", o->modules, "gait: modules in the chain")->capture_default_str();
-  app.add_option("--duration", o->duration,
-                 "episode length, simulated seconds (0: the task's, 60 s gait / 3000 ticks)")
-      ->capture_default_str();
+  o->task.Add(app, "", "episode length, simulated seconds (0: the task's, 60 s gait / 3000 ticks)");
   app.add_option("--variant", o->variant, "controller: ahhs1 or ahhs2")
       ->check(CLI::IsMember({"ahhs1", "ahhs2"}))
       ->capture_default_str();
@@ -260,9 +253,7 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
     }
     store->Export(true);  // the database is the truth: rebuild files missing, short or wrong
   } else {
-    config->scenario =
-        ahhs::sim::MakeScenarioConfig(ahhs::sim::ParseScenarioKind(o.scenario),
-                                      ahhs::sim::ParseJoints(o.joints), o.modules, o.duration);
+    config->scenario = o.task.Config();
     config->scenario.envelope = o.envelope.Resolve();
     config->variant =
         o.variant == "ahhs1" ? ahhs::modules::Variant::kAhhs1 : ahhs::modules::Variant::kAhhs2;
@@ -283,7 +274,7 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
         : config->scenario.envelope.none() ? ahhs::sim::EnvelopePreset("paper")
                                            : config->scenario.envelope;
     config->seed = o.seed;
-    if (o.duration < 0) throw std::invalid_argument("--duration must not be negative");
+    if (o.task.duration < 0) throw std::invalid_argument("--duration must not be negative");
     const std::string error = ev::CheckEvolveConfig(*config);
     if (!error.empty()) throw std::invalid_argument(error);
     if (o.show_config) {
@@ -294,7 +285,7 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
       char stamp[32];
       const std::time_t t = std::time(nullptr);
       std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&t));
-      o.out_dir = std::string("runs/") + stamp + "-" + o.scenario;
+      o.out_dir = std::string("runs/") + stamp + "-" + o.task.scenario;
     }
     const std::string run_id = ahhs::base::HostName() + "-" + std::to_string(getpid()) + "-" +
                                std::to_string(std::time(nullptr));

@@ -21,6 +21,7 @@
 #include "sim/core/scenario.h"
 #include "sim/node/envelope_options.h"
 #include "sim/node/episode_server.h"
+#include "sim/node/scenario_options.h"
 #include "sim/node/sim_node.h"
 
 namespace as = ahhs::sim;
@@ -138,21 +139,17 @@ int main(int argc, char** argv) {
                  "bus mode: exit after this many episodes (0 = serve until killed)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  std::string scenario = "gait", joints = "damped", drive = "zero";
-  int modules = 5;
-  double duration = 0;
+  std::string drive = "zero";
+  as::ScenarioOptions task;
   std::uint64_t seed = 1;
   bool verbose = false;
-  app.add_option("--scenario", scenario, "gait or pendulum")->capture_default_str();
+  task.Add(app, "", "episode length, simulated seconds (default: the task's)");
   auto* drive_opt = app.add_option(
       "--drive", drive,
       "standalone: built-in commands: zero, wave, swingup (pendulum) or inchworm (gait)");
-  app.add_option("--joints", joints, "gait docking: damped or fixed")->capture_default_str();
-  app.add_option("--modules", modules, "gait: modules in the chain (>= 2)")->capture_default_str();
   app.add_option("--seed", seed, "episode seed")
       ->check(ahhs::modules::SeedTextError)
       ->capture_default_str();
-  app.add_option("--duration", duration, "episode length, simulated seconds (default: the task's)");
   app.add_flag("-v,--verbose", verbose, "print the state once per simulated second");
   std::vector<int> hardware_modules;
   app.add_option("--hardware-modules", hardware_modules,
@@ -220,12 +217,11 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    if (app.count("--duration") && !(duration > 0))
+    if (task.duration_given() && !(task.duration > 0))
       throw std::invalid_argument("--duration must be a positive number of seconds");
-    as::ScenarioConfig config = as::MakeScenarioConfig(as::ParseScenarioKind(scenario),
-                                                       as::ParseJoints(joints), modules, duration);
+    as::ScenarioConfig config = task.Config();
     config.envelope = envelope;
-    if (config.kind == as::ScenarioKind::kGait && modules < 2)
+    if (config.kind == as::ScenarioKind::kGait && task.modules < 2)
       throw std::invalid_argument("--modules: a gait organism needs at least 2 modules");
     const as::DriveKind drive_kind = as::ParseDrive(drive);
     auto sim = as::MakeScenario(config);

@@ -19,6 +19,7 @@
 #include "modules/core/genome_json.h"
 #include "modules/core/random.h"
 #include "sim/node/envelope_options.h"
+#include "sim/node/scenario_options.h"
 
 namespace ep = ahhs::episode;
 
@@ -32,15 +33,13 @@ void OnSignal(int) { g_interrupted = true; }
 int main(int argc, char** argv) {
   CLI::App app{
       "ahhs-launch: one episode of a genome in an arena of separate processes (or --fused)"};
-  std::string scenario = "gait", joints = "damped", genome_file, url, arena, log_file,
-              logger = "ahhs-logger";
-  int modules = 5;
-  double duration = 0;
+  std::string genome_file, url, arena, log_file, logger = "ahhs-logger";
+  ahhs::sim::ScenarioOptions task;
   std::uint64_t seed = 1;
   bool fused = false, realtime = false, verbose = false;
   int timeout_s = 3600;
   int lockstep_timeout_ms = 2000;
-  app.add_option("--scenario", scenario, "gait or pendulum")->capture_default_str();
+  task.Add(app, "", "episode length, simulated seconds (default: the task's)");
   app.add_option("--genome", genome_file, "genome file (docs/genome.md)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -48,9 +47,6 @@ int main(int argc, char** argv) {
                  "episode seed, 0 to 2^64-1 (default: the genome file's stored evaluation seed, "
                  "else 1)")
       ->check(ahhs::modules::SeedTextError);
-  app.add_option("--joints", joints, "gait docking: damped or fixed")->capture_default_str();
-  app.add_option("--modules", modules, "gait: modules in the chain (>= 2)")->capture_default_str();
-  app.add_option("--duration", duration, "episode length, simulated seconds (default: the task's)");
   app.add_flag("--fused", fused,
                "run every node in this process (on inproc://, or memq:// with --lcm-url memq://)");
   app.add_flag("--realtime", realtime,
@@ -106,10 +102,9 @@ int main(int argc, char** argv) {
 
   ep::EpisodeSpec spec;
   try {
-    if (app.count("--duration") && !(duration > 0))
+    if (task.duration_given() && !(task.duration > 0))
       throw std::invalid_argument("--duration must be positive");
-    spec.config = ahhs::sim::MakeScenarioConfig(ahhs::sim::ParseScenarioKind(scenario),
-                                                ahhs::sim::ParseJoints(joints), modules, duration);
+    spec.config = task.Config();
     spec.config.envelope = envelope;
     const std::string config_error = ahhs::sim::CheckConfig(spec.config);
     if (!config_error.empty()) throw std::invalid_argument(config_error);

@@ -35,6 +35,7 @@
 #include "modules/core/variation.h"
 #include "sim/core/behaviour.h"
 #include "sim/node/envelope_options.h"
+#include "sim/node/scenario_options.h"
 
 namespace fs = std::filesystem;
 namespace ep = ahhs::episode;
@@ -57,9 +58,8 @@ std::string HashText(const am::Genome& genome) {
 int main(int argc, char** argv) {
   CLI::App app{"ahhs-replay: one episode of a stored or given genome, with everything recorded"};
   std::string run_dir, genome_file, log_file, csv_file, rules_csv, mutants_csv;
-  std::string scenario = "gait", joints = "damped";
-  int modules = 5, generation = -1, individual = -1, mutants = 0;
-  double duration = 0;
+  ahhs::sim::ScenarioOptions task;
+  int generation = -1, individual = -1, mutants = 0;
   std::uint64_t seed = 1;
   std::uint64_t mutant_seed = 1;
   app.add_option("run", run_dir, "run directory of ahhs-evolve");
@@ -68,14 +68,7 @@ int main(int argc, char** argv) {
                  "individual of --generation (default: that generation's best)");
   app.add_option("--genome", genome_file, "a genome file instead of a run")
       ->check(CLI::ExistingFile);
-  app.add_option("--scenario", scenario, "with --genome: gait or pendulum")
-      ->check(CLI::IsMember({"gait", "pendulum"}))
-      ->capture_default_str();
-  app.add_option("--joints", joints, "with --genome: damped or fixed")
-      ->check(CLI::IsMember({"damped", "fixed"}))
-      ->capture_default_str();
-  app.add_option("--modules", modules, "with --genome: gait modules")->capture_default_str();
-  app.add_option("--duration", duration, "with --genome: simulated seconds (0: the task's)");
+  task.Add(app, "with --genome: ", "simulated seconds (0: the task's)");
   app.add_option("--seed", seed,
                  "evaluation seed, 0 to 2^64-1 (default: the stored one: the run's, or the genome "
                  "file's; else 1)")
@@ -207,9 +200,7 @@ int main(int argc, char** argv) {
         }
       }
     } else {
-      spec.config =
-          ahhs::sim::MakeScenarioConfig(ahhs::sim::ParseScenarioKind(scenario),
-                                        ahhs::sim::ParseJoints(joints), modules, duration);
+      spec.config = task.Config();
       const std::string error = ahhs::sim::CheckConfig(spec.config);
       if (!error.empty()) throw std::invalid_argument(error);
       nlohmann::json meta;

@@ -1,0 +1,56 @@
+// The task as command-line options, declared once for every tool that names one: --scenario,
+// --joints, --modules and --duration (sim/core/scenario.h). A bad name is a usage error with the
+// same message as the task's own parser ("unknown scenario 'walker' (use gait or pendulum)").
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "sim/core/scenario.h"
+
+namespace ahhs::sim {
+
+struct ScenarioOptions {
+  std::string scenario = "gait";
+  std::string joints = "damped";
+  int modules = 5;
+  double duration = 0;  // s; 0: the task's
+
+  // `context` begins every help text ("with --genome: "); `duration_help` says what the
+  // duration means for this tool.
+  void Add(CLI::App& app, const std::string& context, const std::string& duration_help) {
+    app.add_option("--scenario", scenario, context + "gait or pendulum")
+        ->check(NameCheck("SCENARIO", [](const std::string& s) { ParseScenarioKind(s); }))
+        ->capture_default_str();
+    app.add_option("--joints", joints, context + "gait docking: damped or fixed")
+        ->check(NameCheck("JOINTS", [](const std::string& s) { ParseJoints(s); }))
+        ->capture_default_str();
+    app.add_option("--modules", modules, context + "gait: modules in the chain (>= 2)")
+        ->capture_default_str();
+    duration_opt_ = app.add_option("--duration", duration, context + duration_help);
+  }
+  bool duration_given() const { return duration_opt_ && duration_opt_->count() > 0; }
+  // The configuration the options name (the task's own checks still apply: CheckConfig).
+  ScenarioConfig Config() const {
+    return MakeScenarioConfig(ParseScenarioKind(scenario), ParseJoints(joints), modules, duration);
+  }
+
+ private:
+  template <typename Parse>
+  static CLI::Validator NameCheck(const std::string& what, Parse parse) {
+    return CLI::Validator(
+        [parse](std::string& value) -> std::string {
+          try {
+            parse(value);
+            return "";
+          } catch (const std::invalid_argument& e) {
+            return e.what();
+          }
+        },
+        what);
+  }
+  CLI::Option* duration_opt_ = nullptr;
+};
+
+}  // namespace ahhs::sim

@@ -5,7 +5,7 @@
    tools. A file includes only from its own folder or lower ones (tests include anything).
 2. Roles within a component: a pure core (modules/core, sim/core, evolver/ga, evolver/store,
    evolver/evolve) includes no bus, no LCM, no node and no app; a node (modules/node, sim/node,
-   episode/fitness, episode/arena, evolver/farm) includes no app.
+   episode/fitness, episode/arena, evolver/farm, evolver/run) includes no app.
 3. A main (an `app` folder, tools/<tool>) is included by nobody but itself.
 4. The CMake link graph follows the same stack: a target defined in a folder's CMakeLists.txt
    links only targets of its own folder or lower ones, and a core's library links no bus, no LCM
@@ -20,7 +20,8 @@ import sys
 root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".")
 stack = ["base", "lcmtypes", "bus", "modules", "sim", "episode", "evolver", "tools"]
 cores = {"modules/core", "sim/core", "evolver/ga", "evolver/store", "evolver/evolve"}
-nodes = {"modules/node", "sim/node", "episode/fitness", "episode/arena", "evolver/farm"}
+nodes = {"modules/node", "sim/node", "episode/fitness", "episode/arena", "evolver/farm",
+         "evolver/run"}
 include = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
 def role(path):  # "sim/core" for sim/core/x.cc

@@ -28,6 +28,8 @@
 #include "evolver/evolve/evolution.h"
 #include "evolver/farm/arena_evaluator.h"
 #include "evolver/farm/farm_evaluator.h"
+#include "evolver/run/progress.h"
+#include "evolver/run/run_end.h"
 #include "evolver/store/run_store.h"
 #include "modules/core/random.h"
 #include "sim/node/envelope_options.h"
@@ -42,89 +44,6 @@ std::atomic<int> g_interrupts{0};
 void OnSignal(int) {
   if (++g_interrupts >= 3) std::_Exit(130);  // the third Ctrl-C does not wait for anything
 }
-
-std::string FormatDuration(double s) {
-  if (!(s >= 0) || !std::isfinite(s)) return "?";
-  char buf[32];
-  const long t = std::lround(s);
-  if (t >= 3600)
-    std::snprintf(buf, sizeof buf, "%ldh%02ldm", t / 3600, (t / 60) % 60);
-  else if (t >= 60)
-    std::snprintf(buf, sizeof buf, "%ldm%02lds", t / 60, t % 60);
-  else
-    std::snprintf(buf, sizeof buf, "%lds", t);
-  return buf;
-}
-
-// The terminal display: a progress bar with ETA on a terminal, plain lines otherwise.
-class Progress {
- public:
-  Progress(int first_generation, int generations)
-      : tty_(isatty(STDOUT_FILENO) != 0),
-        generations_(generations),
-        first_(first_generation),
-        start_(Clock::now()) {}
-
-  void Evaluated(int generation, std::size_t done, std::size_t total) {
-    if (!tty_) return;
-    const auto now = Clock::now();
-    if (done != total && now - last_draw_ < std::chrono::milliseconds(100)) return;
-    last_draw_ = now;
-    const double gens_done =
-        (generation - first_) + static_cast<double>(done) / static_cast<double>(total);
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double eta =
-        gens_done > 0 ? elapsed / gens_done * (generations_ - first_ - gens_done) : NAN;
-    const int width = 30;
-    const int filled =
-        static_cast<int>(width * static_cast<double>(done) / static_cast<double>(total));
-    std::string bar(static_cast<std::size_t>(filled), '#');
-    bar.resize(width, '.');
-    std::printf("\r\033[K generation %d/%d [%s] %zu/%zu  ETA %s%s", generation, generations_ - 1,
-                bar.c_str(), done, total, FormatDuration(eta).c_str(), last_.c_str());
-    std::fflush(stdout);
-    drawn_ = true;
-  }
-
-  void Generation(const ev::GenerationRecord& r) {
-    char line[240];
-    const int done = r.generation + 1 - first_;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    const int left = generations_ - 1 - r.generation;
-    std::snprintf(line, sizeof line,
-                  "generation %d/%d: best %.6f  mean %.6f  median %.6f  worst %.6f  (%.1f s%s%s)",
-                  r.generation, generations_ - 1, r.stats.best, r.stats.mean, r.stats.median,
-                  r.stats.worst, r.wall_time, left > 0 && done > 0 ? ", ETA " : "",
-                  left > 0 && done > 0 ? FormatDuration(elapsed / done * left).c_str() : "");
-    Clear();
-    std::printf("%s\n", line);
-    std::fflush(stdout);
-    char summary[80];
-    std::snprintf(summary, sizeof summary, "  | last: best %.4f mean %.4f", r.stats.best,
-                  r.stats.mean);
-    last_ = summary;
-  }
-
-  void Say(const std::string& text) {
-    Clear();
-    std::fprintf(stderr, "ahhs-evolve: %s\n", text.c_str());
-  }
-
-  void Clear() {
-    if (tty_ && drawn_) {
-      std::printf("\r\033[K");
-      std::fflush(stdout);
-      drawn_ = false;
-    }
-  }
-
- private:
-  bool tty_;
-  int generations_, first_;
-  Clock::time_point start_, last_draw_{};
-  std::string last_;
-  bool drawn_ = false;
-};
 
 // The command line.
 struct Options {
@@ -296,73 +215,6 @@ std::unique_ptr<ev::RunStore> OpenRun(const CLI::App& app, Options& o, ev::Evolv
   return store;
 }
 
-// The end of a finished run: where it is, its best fitness, and the command that replays it.
-void PrintSummary(const ev::RunStore& store, const ev::EvolveConfig& config) {
-  const ev::IndividualRecord best = store.Best();
-  std::string replay = ahhs::base::ExecutableDir() + "/ahhs-launch --scenario " +
-                       std::string(ahhs::sim::ScenarioName(config.scenario.kind));
-  if (config.scenario.kind == ahhs::sim::ScenarioKind::kGait)
-    replay += " --joints " + std::string(ahhs::sim::JointsName(config.scenario.joints)) +
-              " --modules " + std::to_string(config.scenario.num_modules);
-  if (config.scenario.duration > 0) {
-    replay += " --duration " + ahhs::base::ExactDouble(config.scenario.duration);
-  }
-  replay += ahhs::sim::EnvelopeArguments(config.scenario.envelope);
-  replay += " --genome " + store.dir() + "/best.json --seed " + std::to_string(best.eval_seed);
-  std::printf("done: %d generations in %s\n", config.ga.generations, store.dir().c_str());
-  if (best.trials.empty()) {
-    std::printf("best fitness: %.17g (generation %d, individual %d)\n", best.evaluation.fitness,
-                best.generation, best.index);
-    std::printf("replay the best genome: %s\n", replay.c_str());
-  } else {
-    std::printf("best fitness: %.17g (generation %d, individual %d; the %s of %zu trials)\n",
-                best.evaluation.fitness, best.generation, best.index,
-                ev::AggregateName(config.ga.aggregate), best.trials.size());
-    std::printf("replay the best genome's first trial (fitness %.17g): %s\n",
-                best.trials.front().evaluation.fitness, replay.c_str());
-  }
-}
-
-// The run's held-out post-evaluation (its config's post_eval episodes): printed, and kept in
-// RUN/post-eval.json, written once for the run's final best (a resume of a finished run that has
-// it only prints it again).
-void PostEvaluateBest(const ev::RunStore& store, const ev::EvolveConfig& config) {
-  const ev::IndividualRecord best = store.Best();
-  const std::string path = store.dir() + "/post-eval.json";
-  char hash[20];
-  std::snprintf(hash, sizeof hash, "%016llx",
-                static_cast<unsigned long long>(ahhs::modules::GenomeHash(best.genome)));
-  std::error_code ec;
-  if (std::filesystem::is_regular_file(path, ec)) {
-    try {
-      std::ifstream in(path);
-      const auto doc = nlohmann::json::parse(in);
-      if (doc.at("genome_hash") == hash && doc.at("episodes") == config.post_eval) {
-        std::printf("%s\n", doc.at("description").get<std::string>().c_str());
-        return;
-      }
-    } catch (const std::exception&) {
-    }  // damaged or another best's: evaluated again below
-  }
-  std::printf("post-evaluating the best on %d held-out episodes ...\n", config.post_eval);
-  std::fflush(stdout);
-  ahhs::episode::EpisodeSpec spec;
-  spec.config = config.scenario;
-  spec.genome = best.genome;
-  spec.episode = 1;
-  const ahhs::episode::PostEvaluation p =
-      ahhs::episode::PostEvaluate(spec, config.post_eval_envelope, config.post_eval);
-  const std::string line = p.Describe(config.scenario.kind);
-  nlohmann::json doc = p.ToJson();
-  doc["description"] = line;
-  doc["generation"] = best.generation;
-  doc["individual"] = best.index;
-  doc["genome_hash"] = hash;
-  doc["training_fitness"] = best.evaluation.fitness;
-  ahhs::base::WriteFileAtomically(path, doc.dump(2) + "\n");
-  std::printf("%s\n", line.c_str());
-}
-
 ev::FarmOptions FarmOptionsFor(const Options& o, const ev::EvolveConfig& config,
                                const std::string& wire_run) {
   ev::FarmOptions farm;
@@ -436,7 +288,7 @@ int main(int argc, char** argv) {
          ahhs::base::HostName() + ":" + std::to_string(getpid()) + "/w" + std::to_string(k)},
         true);
 
-  Progress progress(first, config.ga.generations);
+  ev::Progress progress(first, config.ga.generations);
   std::printf("run directory: %s\n", dir.c_str());
   std::string robust;
   if (config.ga.trials > 1 || !config.scenario.envelope.none())
@@ -521,8 +373,8 @@ int main(int argc, char** argv) {
   if (exit_code != 0) return exit_code;
 
   try {
-    PrintSummary(*store, config);
-    if (config.post_eval > 0) PostEvaluateBest(*store, config);
+    ev::PrintRunSummary(*store, config);
+    if (config.post_eval > 0) ev::PostEvaluateBest(*store, config);
   } catch (const std::exception& e) {
     std::cerr << "ahhs-evolve: " << e.what() << '\n';
     return ahhs::cli::kExitFailure;

@@ -1,0 +1,80 @@
+#include "evolver/run/run_end.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "base/atomic_file.h"
+#include "base/children.h"
+#include "base/format.h"
+#include "episode/arena/post_eval.h"
+#include "modules/core/genome.h"
+#include "sim/node/envelope_options.h"
+
+namespace ahhs::evolver {
+
+void PrintRunSummary(const RunStore& store, const EvolveConfig& config) {
+  const IndividualRecord best = store.Best();
+  std::string replay = base::ExecutableDir() + "/ahhs-launch --scenario " +
+                       std::string(sim::ScenarioName(config.scenario.kind));
+  if (config.scenario.kind == sim::ScenarioKind::kGait)
+    replay += " --joints " + std::string(sim::JointsName(config.scenario.joints)) + " --modules " +
+              std::to_string(config.scenario.num_modules);
+  if (config.scenario.duration > 0) {
+    replay += " --duration " + base::ExactDouble(config.scenario.duration);
+  }
+  replay += sim::EnvelopeArguments(config.scenario.envelope);
+  replay += " --genome " + store.dir() + "/best.json --seed " + std::to_string(best.eval_seed);
+  std::printf("done: %d generations in %s\n", config.ga.generations, store.dir().c_str());
+  if (best.trials.empty()) {
+    std::printf("best fitness: %.17g (generation %d, individual %d)\n", best.evaluation.fitness,
+                best.generation, best.index);
+    std::printf("replay the best genome: %s\n", replay.c_str());
+  } else {
+    std::printf("best fitness: %.17g (generation %d, individual %d; the %s of %zu trials)\n",
+                best.evaluation.fitness, best.generation, best.index,
+                AggregateName(config.ga.aggregate), best.trials.size());
+    std::printf("replay the best genome's first trial (fitness %.17g): %s\n",
+                best.trials.front().evaluation.fitness, replay.c_str());
+  }
+}
+
+void PostEvaluateBest(const RunStore& store, const EvolveConfig& config) {
+  const IndividualRecord best = store.Best();
+  const std::string path = store.dir() + "/post-eval.json";
+  char hash[20];
+  std::snprintf(hash, sizeof hash, "%016llx",
+                static_cast<unsigned long long>(modules::GenomeHash(best.genome)));
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(path, ec)) {
+    try {
+      std::ifstream in(path);
+      const auto doc = nlohmann::json::parse(in);
+      if (doc.at("genome_hash") == hash && doc.at("episodes") == config.post_eval) {
+        std::printf("%s\n", doc.at("description").get<std::string>().c_str());
+        return;
+      }
+    } catch (const std::exception&) {
+    }  // damaged or another best's: evaluated again below
+  }
+  std::printf("post-evaluating the best on %d held-out episodes ...\n", config.post_eval);
+  std::fflush(stdout);
+  episode::EpisodeSpec spec;
+  spec.config = config.scenario;
+  spec.genome = best.genome;
+  spec.episode = 1;
+  const episode::PostEvaluation p =
+      episode::PostEvaluate(spec, config.post_eval_envelope, config.post_eval);
+  const std::string line = p.Describe(config.scenario.kind);
+  nlohmann::json doc = p.ToJson();
+  doc["description"] = line;
+  doc["generation"] = best.generation;
+  doc["individual"] = best.index;
+  doc["genome_hash"] = hash;
+  doc["training_fitness"] = best.evaluation.fitness;
+  base::WriteFileAtomically(path, doc.dump(2) + "\n");
+  std::printf("%s\n", line.c_str());
+}
+
+}  // namespace ahhs::evolver

@@ -1,0 +1,180 @@
+#include "evolver/run/evolve_options.h"
+
+#include <unistd.h>
+
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+
+#include "base/children.h"
+#include "base/cli.h"
+#include "base/cli_toml.h"
+#include "modules/core/random.h"
+
+namespace ahhs::evolver {
+
+void AddEvolveOptions(CLI::App& app, EvolveOptions* o) {
+  cli::AddStrictTomlConfig(app, "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
+  o->task.Add(app, "", "episode length, simulated seconds (0: the task's, 60 s gait / 3000 ticks)");
+  app.add_option("--variant", o->variant, "controller: ahhs1 or ahhs2")
+      ->check(CLI::IsMember({"ahhs1", "ahhs2"}))
+      ->capture_default_str();
+  app.add_option("--hormones", o->hormones, "hormones per controller")->capture_default_str();
+  app.add_option("--rules", o->rules, "rules per controller")->capture_default_str();
+  app.add_option("--population", o->population, "individuals per generation")
+      ->capture_default_str();
+  app.add_option("--generations", o->generations, "generations")->capture_default_str();
+  app.add_option("--elitism", o->elitism, "best individuals copied (and re-evaluated)")
+      ->capture_default_str();
+  app.add_option("--mutation-rate", o->mutation_rate, "probability that a gene mutates")
+      ->capture_default_str();
+  app.add_option("--mutation-max-change", o->mutation_max_change, "largest change of a real field")
+      ->capture_default_str();
+  app.add_option("--mutation-profile", o->mutation_profile,
+                 "step of each mutated field: paper (every real field by at most the max change) "
+                 "or fine-doses (the first briefing's: AHHS2 doses by 1/50 of it, indices by 1)")
+      ->check(CLI::IsMember({"paper", "fine-doses"}))
+      ->capture_default_str();
+  app.add_option("--crossover-rate", o->crossover_rate, "two-point crossover rate")
+      ->capture_default_str();
+  app.add_option("--trials", o->trials,
+                 "episodes per individual and generation, each with a fresh seed (robust "
+                 "evolution; the paper: 1)")
+      ->check(CLI::Range(1, kMaxTrials))
+      ->capture_default_str();
+  app.add_option("--aggregate", o->aggregate, "an individual's fitness from its trials")
+      ->check(CLI::IsMember({"mean", "median", "min"}))
+      ->capture_default_str();
+  app.add_option("--post-eval", o->post_eval,
+                 "when the run ends, replay its best on N held-out episodes: median, quartiles, "
+                 "min and the share that succeeds, also in RUN/post-eval.json")
+      ->check(CLI::Range(0, kMaxPostEval))
+      ->capture_default_str();
+  app.add_option("--post-eval-envelope", o->post_eval_envelope,
+                 "envelope of the held-out episodes (default: the run's, or paper for a run "
+                 "without one)")
+      ->check(CLI::IsMember({"none", "paper", "wide"}));
+  o->envelope.Add(app,
+                  "envelope of noise every episode is perturbed with: none (the paper), paper or "
+                  "wide (docs/scenarios.md)");
+  app.add_option("--seed", o->seed, "run seed (every random draw of the run derives from it)")
+      ->check(modules::SeedTextError)
+      ->capture_default_str();
+  auto* out_opt =
+      app.add_option("--out", o->out_dir, "run directory (default: runs/<time>-<task>)");
+  auto* resume_opt =
+      app.add_option("--resume", o->resume_dir, "continue the run stored in this directory");
+  out_opt->excludes(resume_opt);
+  app.add_flag("--overwrite", o->overwrite, "replace an existing run directory given with --out");
+  app.add_flag("--show-config", o->show_config,
+               "print the run's configuration as JSON and exit (nothing is created or run)");
+  app.add_option("--workers", o->workers,
+                 "local worker processes to start (default: one per core; 0: only external)")
+      ->check(CLI::Range(0, 256));
+  app.add_option("--arena-kind", o->arena, "how local workers evaluate: direct, fused or processes")
+      ->check(CLI::IsMember({"direct", "fused", "processes"}))
+      ->capture_default_str();
+  app.add_option("--lcm-url", o->url, "LCM URL of the evaluation farm (ttl=1 to use LAN workers)")
+      ->capture_default_str();
+  app.add_option("--job-deadline", o->job_deadline, "seconds before an evaluation is re-issued")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--worker-wait", o->worker_wait,
+                 "seconds to wait for any worker before giving up (the run stays resumable)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+}
+
+std::unique_ptr<RunStore> OpenRun(const CLI::App& app, EvolveOptions& o, EvolveConfig* config) {
+  std::unique_ptr<RunStore> store;
+  if (!o.resume_dir.empty()) {
+    for (const char* name :
+         {"--scenario",         "--joints",         "--modules",       "--duration",
+          "--variant",          "--hormones",       "--rules",         "--population",
+          "--generations",      "--elitism",        "--mutation-rate", "--mutation-max-change",
+          "--mutation-profile", "--crossover-rate", "--seed",          "--overwrite",
+          "--trials",           "--aggregate",      "--post-eval",     "--post-eval-envelope"})
+      if (app.count(name))
+        throw std::invalid_argument(std::string(name) +
+                                    " cannot be given with --resume: a resumed run keeps "
+                                    "its stored configuration");
+    if (o.envelope.given())
+      throw std::invalid_argument(
+          "--envelope cannot be given with --resume: a resumed run keeps its stored "
+          "configuration");
+    store = RunStore::Open(o.resume_dir, o.show_config ? StoreAccess::kRead : StoreAccess::kWrite);
+    *config = ConfigFromJson(store->config());
+    const std::string physics = sim::PhysicsVersion(config->scenario.kind, config->scenario.joints);
+    if (!store->physics().empty() && store->physics() != physics)
+      throw std::invalid_argument(o.resume_dir + " was made with the " +
+                                  sim::ScenarioName(config->scenario.kind) + " physics of " +
+                                  store->physics() + ", this build has " + physics +
+                                  " (CHANGELOG.md): its fitnesses would mix two physics; start a "
+                                  "new run");
+    if (store->physics().empty() && !o.show_config)
+      std::cerr << "ahhs-evolve: note: " << o.resume_dir
+                << " does not record its physics (made before 2026-12-01); resuming with "
+                << physics << '\n';
+    if (o.show_config) {
+      std::cout << ConfigToJson(*config).dump(2) << '\n';
+      return nullptr;
+    }
+    store->Export(true);  // the database is the truth: rebuild files missing, short or wrong
+  } else {
+    config->scenario = o.task.Config();
+    config->scenario.envelope = o.envelope.Resolve();
+    config->variant = o.variant == "ahhs1" ? modules::Variant::kAhhs1 : modules::Variant::kAhhs2;
+    config->hormones = o.hormones;
+    config->rules = o.rules;
+    config->ga.population = o.population;
+    config->ga.generations = o.generations;
+    config->ga.elitism = o.elitism;
+    config->ga.mutation.gene_rate = o.mutation_rate;
+    config->ga.mutation.max_change = o.mutation_max_change;
+    config->ga.mutation.profile = modules::ParseMutationProfile(o.mutation_profile);
+    config->ga.crossover_rate = o.crossover_rate;
+    config->ga.trials = o.trials;
+    config->ga.aggregate = ParseAggregate(o.aggregate);
+    config->post_eval = o.post_eval;
+    config->post_eval_envelope = !o.post_eval_envelope.empty()
+                                     ? sim::EnvelopePreset(o.post_eval_envelope)
+                                 : config->scenario.envelope.none() ? sim::EnvelopePreset("paper")
+                                                                    : config->scenario.envelope;
+    config->seed = o.seed;
+    if (o.task.duration < 0) throw std::invalid_argument("--duration must not be negative");
+    const std::string error = CheckEvolveConfig(*config);
+    if (!error.empty()) throw std::invalid_argument(error);
+    if (o.show_config) {
+      std::cout << ConfigToJson(*config).dump(2) << '\n';
+      return nullptr;
+    }
+    if (o.out_dir.empty()) {
+      char stamp[32];
+      const std::time_t t = std::time(nullptr);
+      std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&t));
+      o.out_dir = std::string("runs/") + stamp + "-" + o.task.scenario;
+    }
+    const std::string run_id = base::HostName() + "-" + std::to_string(getpid()) + "-" +
+                               std::to_string(std::time(nullptr));
+    store = RunStore::Create(o.out_dir, run_id, config->seed, ConfigToJson(*config),
+                             sim::PhysicsVersion(config->scenario.kind, config->scenario.joints),
+                             o.overwrite);
+  }
+  return store;
+}
+
+FarmOptions FarmOptionsFor(const EvolveOptions& o, const EvolveConfig& config,
+                           const std::string& wire_run) {
+  FarmOptions farm;
+  farm.run = wire_run;
+  farm.config = config.scenario;
+  farm.population = config.ga.population;
+  farm.trials = config.ga.trials;
+  farm.lease.job_deadline =
+      std::chrono::milliseconds(static_cast<std::int64_t>(o.job_deadline * 1000));
+  farm.no_worker_timeout =
+      std::chrono::milliseconds(static_cast<std::int64_t>(o.worker_wait * 1000));
+  return farm;
+}
+
+}  // namespace ahhs::evolver

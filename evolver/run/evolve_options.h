@@ -1,0 +1,45 @@
+// ahhs-evolve's options, and how they open a run: a new one, or the stored one (--resume), whose
+// configuration the options may not change.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "bus/lcm_bus.h"
+#include "evolver/evolve/evolution.h"
+#include "evolver/farm/farm_evaluator.h"
+#include "evolver/store/run_store.h"
+#include "sim/node/envelope_options.h"
+#include "sim/node/scenario_options.h"
+
+namespace ahhs::evolver {
+
+// ahhs-evolve's command line.
+struct EvolveOptions {
+  sim::ScenarioOptions task;
+  std::string variant = "ahhs2", out_dir, resume_dir, arena = "direct", url = bus::kDefaultLcmUrl,
+              mutation_profile = "paper";
+  int hormones = 5, rules = 30, population = 20, generations = 200, elitism = 1, workers = -1,
+      trials = 1, post_eval = 0;
+  std::string aggregate = "mean", post_eval_envelope;
+  sim::EnvelopeOptions envelope;
+  double mutation_rate = 0.15, mutation_max_change = 0.1, crossover_rate = 0.05;
+  std::uint64_t seed = 1;
+  double job_deadline = 300, worker_wait = 60;
+  bool overwrite = false, show_config = false;
+};
+
+// Declares every option (and --config, a strict TOML preset) on `app`.
+void AddEvolveOptions(CLI::App& app, EvolveOptions* o);
+
+// The run: a new one from the options, or the stored one (--resume). Returns nullptr after
+// --show-config printed the configuration. Throws with a message for the user.
+std::unique_ptr<RunStore> OpenRun(const CLI::App& app, EvolveOptions& o, EvolveConfig* config);
+
+// The farm's options for this run (`wire_run`: the run's name on the bus).
+FarmOptions FarmOptionsFor(const EvolveOptions& o, const EvolveConfig& config,
+                           const std::string& wire_run);
+
+}  // namespace ahhs::evolver

@@ -1,9 +1,7 @@
 #include "evolver/store/run_store.h"
 
-#include <fcntl.h>
 #include <glib.h>
 #include <sqlite3.h>
-#include <sys/file.h>
 #include <sys/statvfs.h>
 #include <sys/vfs.h>
 #include <unistd.h>
@@ -38,27 +36,20 @@ constexpr const char* kTrialsTable =
     "  cost REAL NOT NULL, worker TEXT NOT NULL, attempt INTEGER NOT NULL,"
     "  wall_time REAL NOT NULL, message TEXT NOT NULL, PRIMARY KEY(generation, idx, trial));";
 
-// Takes the write lock of a run directory; returns its descriptor, -1 when another process holds
-// it. Throws when the lock file cannot be made.
-int TryLock(const fs::path& root) {
-  const fs::path path = root / kLockName;
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0)
-    throw RunStoreError("cannot write " + path.string() + ": " + std::strerror(errno) +
+// The write lock of a run directory. Throws when another process holds it or the lock file
+// cannot be made.
+base::FileLock LockOrThrow(const fs::path& root) {
+  std::optional<base::FileLock> lock;
+  try {
+    lock = base::FileLock::TryExclusive((root / kLockName).string());
+  } catch (const std::runtime_error& e) {
+    throw RunStoreError(std::string(e.what()) +
                         " (a run directory must be writable to be written or resumed)");
-  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-    ::close(fd);
-    return -1;
   }
-  return fd;
-}
-
-int LockOrThrow(const fs::path& root) {
-  const int fd = TryLock(root);
-  if (fd < 0)
+  if (!lock)
     throw RunStoreError(root.string() +
                         " is in use: another process (ahhs-evolve) is writing this run");
-  return fd;
+  return std::move(*lock);
 }
 
 // "; the filesystem holding it is full (N kB free)" when the filesystem of `path` has less
@@ -249,21 +240,13 @@ sqlite3* OpenDatabase(const fs::path& path, int flags) {
 
 }  // namespace
 
-RunStore::RunStore(std::string dir, sqlite3* db, int lock_fd)
-    : dir_(std::move(dir)), db_(db), lock_fd_(lock_fd) {}
+RunStore::RunStore(std::string dir, sqlite3* db, std::optional<base::FileLock> lock)
+    : dir_(std::move(dir)), db_(db), lock_(std::move(lock)) {}
 
-RunStore::~RunStore() {
-  sqlite3_close(db_);
-  if (lock_fd_ >= 0) ::close(lock_fd_);
-}
+RunStore::~RunStore() { sqlite3_close(db_); }
 
 bool RunStore::InUse(const std::string& dir) {
-  const fs::path path = fs::path(dir) / kLockName;
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return false;
-  const bool held = ::flock(fd, LOCK_SH | LOCK_NB) != 0;
-  ::close(fd);
-  return held;
+  return base::FileLock::HeldElsewhere((fs::path(dir) / kLockName).string());
 }
 
 void RunStore::Exec(const char* sql) const {
@@ -290,22 +273,13 @@ std::unique_ptr<RunStore> RunStore::Create(const std::string& dir, const std::st
   }
   fs::create_directories(root, ec);
   if (ec) throw RunStoreError("cannot create " + dir + ": " + ec.message());
-  const int lock_fd = LockOrThrow(root);
+  base::FileLock lock = LockOrThrow(root);
   for (const auto& entry : fs::directory_iterator(root))
     if (entry.path().filename() != kLockName) fs::remove_all(entry.path(), ec);
   fs::create_directories(root / "best", ec);
-  if (ec) {
-    ::close(lock_fd);
-    throw RunStoreError("cannot create " + dir + ": " + ec.message());
-  }
-  sqlite3* db = nullptr;
-  try {
-    db = OpenDatabase(root / kDatabaseName, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
-  } catch (...) {
-    ::close(lock_fd);
-    throw;
-  }
-  std::unique_ptr<RunStore> store(new RunStore(dir, db, lock_fd));
+  if (ec) throw RunStoreError("cannot create " + dir + ": " + ec.message());
+  sqlite3* db = OpenDatabase(root / kDatabaseName, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  std::unique_ptr<RunStore> store(new RunStore(dir, db, std::move(lock)));
   store->Exec(JournalPragma(root));
   store->Exec(
       "PRAGMA synchronous=NORMAL;"
@@ -346,15 +320,10 @@ std::unique_ptr<RunStore> RunStore::Open(const std::string& dir, StoreAccess acc
   if (!fs::is_directory(root, ec)) throw RunStoreError(dir + " is not a directory");
   if (!fs::exists(root / kDatabaseName, ec))
     throw RunStoreError(dir + " is not a run directory (no " + kDatabaseName + ")");
-  const int lock_fd = access == StoreAccess::kWrite ? LockOrThrow(root) : -1;
-  sqlite3* db = nullptr;
-  try {
-    db = OpenDatabase(root / kDatabaseName, SQLITE_OPEN_READWRITE);
-  } catch (...) {
-    if (lock_fd >= 0) ::close(lock_fd);
-    throw;
-  }
-  std::unique_ptr<RunStore> store(new RunStore(dir, db, lock_fd));
+  std::optional<base::FileLock> lock;
+  if (access == StoreAccess::kWrite) lock = LockOrThrow(root);
+  sqlite3* db = OpenDatabase(root / kDatabaseName, SQLITE_OPEN_READWRITE);
+  std::unique_ptr<RunStore> store(new RunStore(dir, db, std::move(lock)));
   try {
     Statement check(db, "PRAGMA quick_check");
     if (!check.Step() || check.Text(0) != "ok")
@@ -668,7 +637,7 @@ void RunStore::CommitGeneration(const GenerationRecord& record,
 }
 
 std::uint64_t RunStore::Compact() {
-  if (lock_fd_ < 0) throw RunStoreError(dir_ + ": compacting needs the run opened for writing");
+  if (!lock_) throw RunStoreError(dir_ + ": compacting needs the run opened for writing");
   if (format_version_ >= 2) return 0;  // Open(kWrite) has chained a version-2 run already
   const fs::path db_path = fs::path(dir_) / kDatabaseName;
   std::error_code ec;

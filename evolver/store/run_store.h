@@ -19,10 +19,12 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "base/file_lock.h"
 #include "evolver/ga/ga.h"
 #include "modules/core/genome.h"
 
@@ -141,7 +143,7 @@ class RunStore {
   IndividualRecord Best() const;
 
  private:
-  RunStore(std::string dir, sqlite3* db, int lock_fd);
+  RunStore(std::string dir, sqlite3* db, std::optional<base::FileLock> lock);
   void Exec(const char* sql) const;
   void LoadRunTable();
   std::vector<IndividualRecord> LoadIndividuals(int generation, int index) const;  // -1: all
@@ -161,7 +163,7 @@ class RunStore {
 
   std::string dir_;
   sqlite3* db_ = nullptr;
-  int lock_fd_ = -1;  // the write lock, -1 for a reader
+  std::optional<base::FileLock> lock_;  // the write lock; none for a reader
   std::string run_id_;
   std::uint64_t run_seed_ = 0;
   nlohmann::json config_;

@@ -7,8 +7,6 @@
 //   ahhs-study submit PLAN --out DIR --slurm [...] | submit --resume DIR --slurm
 //   ahhs-study task DIR --submission S --index I    (a Slurm array task)
 // Exit codes: 0 done, 1 a run or the study failed, 2 bad options or plan, 130 interrupted.
-#include <fcntl.h>
-#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -29,6 +27,7 @@
 
 #include "base/children.h"
 #include "base/cli.h"
+#include "base/file_lock.h"
 #include "evolver/store/run_store.h"
 #include "tools/study/study_dir.h"
 
@@ -93,24 +92,11 @@ json ResolveConfig(const std::string& evolve, const std::string& config_file) {
 }
 
 // The study directory is run by one ahhs-study at a time.
-class StudyLock {
- public:
-  explicit StudyLock(const std::string& dir) {
-    const std::string path = dir + "/study.lock";
-    fd_ = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd_ < 0) throw std::runtime_error("cannot create " + path);
-    if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      close(fd_);
-      throw std::runtime_error(dir + " is in use by another ahhs-study run");
-    }
-  }
-  ~StudyLock() { close(fd_); }
-  StudyLock(const StudyLock&) = delete;
-  StudyLock& operator=(const StudyLock&) = delete;
-
- private:
-  int fd_ = -1;
-};
+ahhs::base::FileLock LockStudy(const std::string& dir) {
+  auto lock = ahhs::base::FileLock::TryExclusive(dir + "/study.lock");
+  if (!lock) throw std::runtime_error(dir + " is in use by another ahhs-study run");
+  return std::move(*lock);
+}
 
 struct RunOptions {
   int parallel = 1;
@@ -168,7 +154,7 @@ bool StartRun(const at::StudyDir& study, const at::StudyRun& run, const RunOptio
 }
 
 int RunStudy(const at::StudyDir& study, RunOptions options) {
-  StudyLock lock(study.dir());
+  const ahhs::base::FileLock lock = LockStudy(study.dir());
   const std::string evolve = ahhs::base::ExecutableDir() + "/ahhs-evolve";
   if (options.workers_per_run <= 0)
     options.workers_per_run = std::max(

@@ -1,4 +1,4 @@
-// The paper's genetic algorithm (spec: ahhs-model.md, "Configurations" and "Variation"), with no
+// The paper's genetic algorithm (docs/evolution.md, "The GA"; docs/model.md, "Variation"), with no
 // I/O and no LCM: linear proportional (roulette-wheel) selection, elitism with re-evaluation,
 // per-gene mutation and two-point crossover. Every random draw of generation g comes from
 // DeriveSeed(run_seed, {kBreedStream, g}), so breeding generation g+1 needs nothing but

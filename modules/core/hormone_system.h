@@ -1,4 +1,4 @@
-// The hormone system of one compartment (spec: ahhs-model.md, "One tick in one compartment").
+// The hormone system of one compartment (docs/model.md, "One tick").
 // Controller is the const model compiled from a genome; CompartmentState is the mutable data of
 // one compartment. Step() allocates nothing, touches no globals and does no I/O.
 #pragma once
@@ -16,7 +16,7 @@ namespace ahhs::modules {
 enum ActivityColumn : int { kActSensor = 0, kActLinear = 1, kActNonlinear = 2, kActActuator = 3 };
 inline constexpr int kActivityColumns = 4;
 
-// Docking ports of a module: the diffusion denominator P of the spec.
+// Docking ports of a module: the diffusion denominator P of docs/model.md.
 inline constexpr int kDefaultPorts = 4;
 
 struct TickInput;

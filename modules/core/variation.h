@@ -1,4 +1,4 @@
-// Random initialisation, mutation and crossover of genomes (spec: ahhs-model.md, "Initialisation"
+// Random initialisation, mutation and crossover of genomes (docs/model.md, "Initialisation"
 // and "Variation"). Every draw comes from the Rng passed in; the same seed gives the same genome.
 #pragma once
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Every preset in configs/ loads through ahhs-evolve --config and gives the paper's setting
-# (ahhs-model.md, "Configurations used in the paper"); command-line options override a preset.
+# (docs/evolution.md, "Presets"); command-line options override a preset.
 set -uo pipefail
 E=${1:?usage: presets_test.sh AHHS_EVOLVE}
 src=${AHHS_SOURCE_DIR:?}

@@ -113,7 +113,7 @@ std::unique_ptr<RunStore> OpenRun(const CLI::App& app, EvolveOptions& o, EvolveC
                                   "new run");
     if (store->physics().empty() && !o.show_config)
       std::cerr << "ahhs-evolve: note: " << o.resume_dir
-                << " does not record its physics (made before 2026-12-01); resuming with "
+                << " does not record its physics (an older build made it); resuming with "
                 << physics << '\n';
     if (o.show_config) {
       std::cout << ConfigToJson(*config).dump(2) << '\n';

@@ -3,7 +3,7 @@
 # fitness (the median over replays with the friction scaled by 0.975..1.025, ahhs-replay
 # --robustness) agrees at the task's step and at half of it. A single replay cannot tell: evolved
 # bests are knife-edges of deterministic chaos, and 1 % more friction changes them as much as a
-# finer step (docs/scenarios.md, "Physics step and deterministic chaos").
+# finer step (docs/findings.md, "Physics step and deterministic chaos").
 bin=${1:?usage: physics_step_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_scratch

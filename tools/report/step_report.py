@@ -1,7 +1,7 @@
 """ahhs-report steps: is the gait's physics step fine enough, judged by distributions?
 
 A chaotic system has no converged trajectory, so the step is judged by whether the *post-evaluated
-distribution* of each genome converges (docs/scenarios.md, "Physics step by distribution"): every
+distribution* of each genome converges (docs/scenarios.md, "Physics step"): every
 genome is replayed on the same N held-out episodes (ahhs-replay --post-eval N) at the task's step
 h, at h / 2 and at 2 h. A step passes when, for every genome, its median and its over-the-wall
 share agree with those at h / 2 within 10 % and 0.15. Writes steps.csv (one row per genome and

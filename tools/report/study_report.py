@@ -428,7 +428,7 @@ def write_results(args, name, configs, tasks, maxima, claims):
            "Best fitness is each run's best (the paper's statistic). Robust: a best genome "
            "replayed with the friction scaled 0.975-1.025 (8 replays, median), for the "
            "configuration's best and for each run's; an evolved gait best is usually far above "
-           "it (docs/scenarios.md, \"Physics step and deterministic chaos\"). Rules: share of the "
+           "it (docs/findings.md, \"Physics step and deterministic chaos\"). Rules: share of the "
            "rules of the runs' best genomes that "
            "never or seldom (< 1 % of ticks) trigger; hormones: touched by a rule part active in "
            ">= 1 % of ticks (median over runs).", "",

@@ -1,13 +1,18 @@
 #!/usr/bin/python3
-"""The study report's claim verdicts (tools/report/study_report.py) on made-up studies whose
-answers are known: each claim row must say reproduced, differs, open or close as the numbers
-demand, and never give a verdict on fewer than MIN_RUNS runs."""
+"""The paper-2010 study's claim verdicts (studies/paper-2010-claims.py, judged with
+tools/report/claims_lib.py) on made-up studies whose answers are known: each claim row must say
+reproduced, differs, open or close as the numbers demand, and never give a verdict on fewer than
+MIN_RUNS runs. A study finds its claims by its plan's name."""
 import os
 import sys
 
 sys.path.insert(0, os.path.join(os.environ["AHHS_SOURCE_DIR"], "tools", "report"))
 import numpy as np  # noqa: E402
 import study_report as sr  # noqa: E402
+
+make_claims = sr.claims_of("paper-2010")
+assert make_claims is not None and sr.claims_of("paper-2010-robust") is not None
+assert sr.claims_of("no-such-study") is not None  # judged against the paper's claims
 
 
 class FakeRun:
@@ -35,7 +40,7 @@ def rows(configs, stat="best"):
         if c.runs:
             maxima[c.task] = max(maxima.get(c.task, 0), float(np.max(c.best)))
     return {claim: (ours, verdict)
-            for claim, _, ours, verdict in sr.make_claims(configs, maxima, stat)}
+            for claim, _, ours, verdict in make_claims(configs, maxima, stat)}
 
 
 rng = np.random.default_rng(1)
@@ -101,7 +106,7 @@ ours = rows(fixed)["Fixed gait: share of AHHS2-50 runs within 80 % of the maximu
 assert ours.endswith("50% within 80 % of our maximum 3.000"), ours
 # Both passes have the same claims in the same order; merged, six columns.
 maxima = {"pendulum": 0.7}
-merged = sr.merge_claims(sr.make_claims(pend, maxima), sr.make_claims(pend, maxima, "robust"))
+merged = sr.merge_claims(make_claims(pend, maxima), make_claims(pend, maxima, "robust"))
 assert all(len(row) == 6 for row in merged), merged
 # Whether this build reproduces each run's best: "every" only when all do; a run whose replay
 # differs is named; a run with no stored fitness is neither.

@@ -7,8 +7,9 @@
   ahhs-report steps GENOME_OR_RUN... -o OUT_DIR (step_report.py)
 
 This file only parses the command line and dispatches. The modules form a stack without cycles:
-report_lib (runs, statistics, figures, replays) < run_report (runs, neighbourhood) <
-study_report, step_report < ahhs_report.
+report_lib (runs, statistics, figures, replays) < run_report (runs, neighbourhood), claims_lib
+(how a claim is judged) < study_report, step_report < ahhs_report. A study's claims live beside
+its plan (studies/paper-2010-claims.py).
 
 Reads each run's SQLite database directly (Python's sqlite3), replays the best genome of the
 first run with ahhs-replay for the per-tick figures, and writes every figure as PNG and SVG.

@@ -16,15 +16,10 @@
 #include <iostream>
 #include <thread>
 
-#include "base/atomic_file.h"
 #include "base/children.h"
 #include "base/cli.h"
-#include "base/cli_toml.h"
-#include "base/format.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
-#include "episode/arena/post_eval.h"
-#include "episode/arena/process_arena.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/farm/arena_evaluator.h"
 #include "evolver/farm/farm_evaluator.h"

@@ -27,13 +27,10 @@
 
 #include "base/children.h"
 #include "base/cli.h"
-#include "base/file_lock.h"
-#include "evolver/store/run_store.h"
 #include "tools/study/study_runs.h"
 
 namespace fs = std::filesystem;
 namespace at = ahhs::tools;
-namespace ev = ahhs::evolver;
 using nlohmann::json;
 
 using ahhs::cli::kExitFailure;

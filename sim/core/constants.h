@@ -48,6 +48,9 @@ struct GaitConstants {
   // creep (up to 0.9 m in 55 s); docs/scenarios.md has the measurements. The quick-step settings
   // below apply only with iterative_solver = true (kept to compare against).
   bool iterative_solver = false;
+  // The chain solver (sim/core/chain_step.h): dWorldStep's constraint model solved with the
+  // chain's structure. Experimental until its distributions are validated (docs/performance.md).
+  bool chain_solver = false;
   int solver_iterations = 16;  // dWorldSetQuickStepNumIterations
   // Successive over-relaxation of the quick-step solver (dWorldSetQuickStepW).
   double solver_relaxation_fixed = 1.3;

@@ -97,6 +97,7 @@ void GaitScenario::Destroy() {
   if (ray_) dGeomDestroy(ray_);
   if (contacts_) dJointGroupDestroy(contacts_);
   if (space_) dSpaceDestroy(space_);  // destroys the geoms in it
+  chain_.reset();
   if (world_) dWorldDestroy(world_);  // destroys bodies and joints
   ray_ = nullptr;
   contacts_ = nullptr;
@@ -128,7 +129,7 @@ void GaitScenario::Build() {
   dWorldSetQuickStepW(
       world_, joints_ == Joints::kFixed ? k_.solver_relaxation_fixed : k_.solver_relaxation_damped);
   const int rest_steps = static_cast<int>(std::lround(k_.rest_time / step_));
-  if (rest_steps > 0) {
+  if (rest_steps > 0 && !k_.chain_solver) {
     dWorldSetAutoDisableFlag(world_, 1);
     dWorldSetAutoDisableLinearThreshold(world_, k_.rest_linear_speed);
     dWorldSetAutoDisableAngularThreshold(world_, k_.rest_angular_speed);
@@ -249,6 +250,7 @@ void GaitScenario::Build() {
       dJointSetAMotorAxis(gear, 0, 1, 0, 1, 0);
       dJointSetAMotorParam(gear, dParamVel, 0);
       dJointSetAMotorParam(gear, dParamFMax, k_.servo_gear_friction);
+      m.gear = gear;
     }
   }
   // Damped docking: module i's back half to module i+1's front half by a soft fixed joint.
@@ -263,6 +265,22 @@ void GaitScenario::Build() {
       dJointSetFixedParam(dock, dParamERP, hk / (hk + k_.dock_damping));
       dJointSetFixedParam(dock, dParamCFM, 1.0 / (hk + k_.dock_damping));
       docks_.push_back(dock);
+    }
+  }
+  if (k_.chain_solver) {
+    ChainStep::Params rest;
+    rest.rest_linear_speed = k_.rest_linear_speed;
+    rest.rest_angular_speed = k_.rest_angular_speed;
+    rest.rest_steps = rest_steps;
+    chain_ = std::make_unique<ChainStep>(world_, rest);
+    for (const Module& m : modules_) {  // bodies in chain order, each once
+      if (&m == &modules_.front() || !rigid) chain_->AddBody(m.front.body);
+      chain_->AddBody(m.back.body);
+    }
+    for (std::size_t i = 0; i < modules_.size(); ++i) {
+      chain_->AddHinge(modules_[i].hinge);
+      if (modules_[i].gear) chain_->AddAngularMotor(modules_[i].gear);
+      if (i < docks_.size()) chain_->AddFixed(docks_[i]);
     }
   }
   ray_ = dCreateRay(nullptr, k_.sensor_range);
@@ -306,6 +324,10 @@ void GaitScenario::NearCallback(void* data, dGeomID a, dGeomID b) {
     contact[i].surface.mu = self->k_.friction * self->draw_.friction_scale;
     contact[i].surface.soft_erp = self->k_.contact_erp;
     contact[i].surface.soft_cfm = self->k_.contact_cfm;
+    if (self->chain_) {
+      self->chain_->AddContact(contact[i], ba, bb);
+      continue;
+    }
     dJointID j = dJointCreateContact(self->world_, self->contacts_, &contact[i]);
     dJointAttach(j, ba, bb);
   }
@@ -318,6 +340,12 @@ void GaitScenario::PhysicsStep() {
     const double error = m.target - dJointGetHingeAngle(m.hinge);
     const double cap = k_.servo_max_speed * draw_.speed_scale[i];
     dJointSetHingeParam(m.hinge, dParamVel, std::clamp(k_.servo_gain * error, -cap, cap));
+  }
+  if (chain_) {
+    if (chain_->Resting()) return;  // nothing moves until a target changes
+    dSpaceCollide(space_, this, &GaitScenario::NearCallback);
+    chain_->Step(step_);
+    return;
   }
   dSpaceCollide(space_, this, &GaitScenario::NearCallback);
   if (k_.iterative_solver)
@@ -493,6 +521,7 @@ void GaitScenario::AnchorHalf(int module, bool back_half) {
   dJointID anchor = dJointCreateFixed(world_, nullptr);
   dJointAttach(anchor, back_half ? m.back.body : m.front.body, nullptr);
   dJointSetFixed(anchor);
+  if (chain_) chain_->AddFixed(anchor);
 }
 
 void GaitScenario::AddObstacle(const double position[3], const double size[3]) {

@@ -10,9 +10,11 @@
 #include <ode/ode.h>
 
 #include <array>
+#include <memory>
 #include <random>
 #include <vector>
 
+#include "sim/core/chain_step.h"
 #include "sim/core/constants.h"
 #include "sim/core/scenario.h"
 
@@ -70,7 +72,8 @@ class GaitScenario final : public Scenario {
   struct Module {
     Part front, back;
     dJointID hinge = nullptr;
-    double target = 0;  // hinge target angle, rad
+    dJointID gear = nullptr;  // gear friction, if any
+    double target = 0;        // hinge target angle, rad
   };
   void Build();
   void Destroy();
@@ -94,6 +97,7 @@ class GaitScenario final : public Scenario {
   dGeomID ray_ = nullptr;
   std::vector<Module> modules_;
   std::vector<dJointID> docks_;
+  std::unique_ptr<ChainStep> chain_;  // the chain solver, when GaitConstants::chain_solver
   std::vector<dGeomID> scenery_;
   std::vector<double> sensors_;  // num_modules x kGaitSensors
   std::array<double, 3> start_centroid_{};

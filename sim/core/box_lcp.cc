@@ -1,0 +1,200 @@
+#include "sim/core/box_lcp.h"
+
+#include <cmath>
+#include <limits>
+
+namespace ahhs::sim {
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr int kFree = 1, kAtLo = 2, kAtHi = 3;
+}  // namespace
+
+double* BoxLcp::Row(int a) { return &chol_[static_cast<std::size_t>(a) * cap_]; }
+
+bool BoxLcp::FactorFrom(int n, const double* s, int from) {
+  // Rows from..nc-1 of the Cholesky factor of S_CC, the rows above kept.
+  const int nc = static_cast<int>(free_.size());
+  for (int a = from; a < nc; ++a) {
+    const int ra = free_[static_cast<std::size_t>(a)];
+    double* la = Row(a);
+    for (int b = 0; b <= a; ++b) {
+      double v = s[static_cast<std::size_t>(ra) * static_cast<std::size_t>(n) +
+                   static_cast<std::size_t>(free_[static_cast<std::size_t>(b)])];
+      const double* lb = Row(b);
+      for (int k = 0; k < b; ++k) v -= la[k] * lb[k];
+      if (a == b) {
+        if (!(v > 0)) return false;
+        la[a] = std::sqrt(v);
+      } else {
+        la[b] = v / lb[b];
+      }
+    }
+  }
+  return true;
+}
+
+bool BoxLcp::FreeDirection(int n, const double* s, int i) {
+  // dx_C = -S_CC^-1 S_C,i by the factor: L y = -S_C,i, L^T dx = y.
+  const int nc = static_cast<int>(free_.size());
+  rhs_.resize(static_cast<std::size_t>(nc));
+  for (int a = 0; a < nc; ++a) {
+    const double* la = Row(a);
+    double v = -s[static_cast<std::size_t>(free_[static_cast<std::size_t>(a)]) *
+                      static_cast<std::size_t>(n) +
+                  static_cast<std::size_t>(i)];
+    for (int k = 0; k < a; ++k) v -= la[k] * rhs_[static_cast<std::size_t>(k)];
+    rhs_[static_cast<std::size_t>(a)] = v / la[a];
+  }
+  for (int a = nc - 1; a >= 0; --a) {
+    double v = rhs_[static_cast<std::size_t>(a)];
+    for (int k = a + 1; k < nc; ++k) v -= Row(k)[a] * rhs_[static_cast<std::size_t>(k)];
+    rhs_[static_cast<std::size_t>(a)] = v / Row(a)[a];
+  }
+  for (int a = 0; a < nc; ++a)
+    dx_[static_cast<std::size_t>(free_[static_cast<std::size_t>(a)])] =
+        rhs_[static_cast<std::size_t>(a)];
+  return true;
+}
+
+bool BoxLcp::Solve(int n, const double* s, const double* r, const double* lo, const double* hi,
+                   const int* findex, double* x) {
+  const auto un = static_cast<std::size_t>(n);
+  state_.assign(un, 0);
+  free_.clear();
+  lo_.assign(lo, lo + n);
+  hi_.assign(hi, hi + n);
+  w_.assign(un, 0);
+  dw_.assign(un, 0);
+  dx_.assign(un, 0);
+  cap_ = n;
+  chol_.resize(un * un);
+  pivots_ = 0;
+  for (int i = 0; i < n; ++i) x[i] = 0;
+  auto add_free = [&](int j) {
+    free_.push_back(j);
+    return FactorFrom(n, s, static_cast<int>(free_.size()) - 1);
+  };
+  auto take = [&](int i) {
+    const auto ui = static_cast<std::size_t>(i);
+    if (lo_[ui] == hi_[ui]) {  // nothing to choose: fixed at its only value
+      x[i] = lo_[ui];
+      state_[ui] = kAtLo;
+      return true;
+    }
+    {
+      double v = -r[i];
+      const double* si = s + ui * un;
+      for (int k = 0; k < n; ++k) v += si[k] * x[k];
+      w_[ui] = v;
+    }
+    for (int guard = 0; guard < 10 * n + 10; ++guard) {
+      const double wi = w_[ui];
+      if (wi == 0) {
+        state_[ui] = kFree;
+        return add_free(i);
+      }
+      if (x[i] == lo_[ui] && wi > 0) {
+        state_[ui] = kAtLo;
+        return true;
+      }
+      if (x[i] == hi_[ui] && wi < 0) {
+        state_[ui] = kAtHi;
+        return true;
+      }
+      const double dir = wi < 0 ? 1.0 : -1.0;
+      if (!FreeDirection(n, s, i)) return false;
+      ++pivots_;
+      // Changes of w per unit step, for the rows at a bound and for i.
+      for (int j = 0; j < n; ++j) {
+        const auto uj = static_cast<std::size_t>(j);
+        if ((state_[uj] != kAtLo && state_[uj] != kAtHi) && j != i) continue;
+        const double* sj = s + uj * un;
+        double v = sj[i];
+        for (int c : free_) v += sj[c] * dx_[static_cast<std::size_t>(c)];
+        dw_[uj] = dir * v;
+      }
+      // The longest step before something changes state.
+      double t = -wi / dw_[ui];  // w_i reaches 0
+      int event = 0, who = i;
+      const double to_bound = dir > 0 ? hi_[ui] - x[i] : x[i] - lo_[ui];
+      if (to_bound <= t) {
+        t = to_bound;
+        event = 1;
+      }
+      for (int c : free_) {
+        const auto uc = static_cast<std::size_t>(c);
+        const double d = dir * dx_[uc];
+        double tc = kInf;
+        if (d > 0 && hi_[uc] < kInf) tc = (hi_[uc] - x[c]) / d;
+        if (d < 0 && lo_[uc] > -kInf) tc = (lo_[uc] - x[c]) / d;
+        if (tc < t) {
+          t = tc;
+          event = 2;
+          who = c;
+        }
+      }
+      for (int j = 0; j < n; ++j) {
+        const auto uj = static_cast<std::size_t>(j);
+        if (j == i || lo_[uj] == hi_[uj]) continue;
+        double tj = kInf;
+        if (state_[uj] == kAtLo && dw_[uj] < 0) tj = -w_[uj] / dw_[uj];
+        if (state_[uj] == kAtHi && dw_[uj] > 0) tj = -w_[uj] / dw_[uj];
+        if (tj < t) {
+          t = tj;
+          event = 3;
+          who = j;
+        }
+      }
+      if (t < 0) t = 0;
+      x[i] += dir * t;
+      for (int c : free_) x[c] += dir * t * dx_[static_cast<std::size_t>(c)];
+      for (int j = 0; j < n; ++j) {
+        const auto uj = static_cast<std::size_t>(j);
+        if (state_[uj] == kAtLo || state_[uj] == kAtHi || j == i) w_[uj] += t * dw_[uj];
+      }
+      const auto uw = static_cast<std::size_t>(who);
+      if (event == 1) x[i] = dir > 0 ? hi_[ui] : lo_[ui];
+      if (event == 2) {  // a free row reached a bound
+        const double d = dir * dx_[uw];
+        x[who] = d > 0 ? hi_[uw] : lo_[uw];
+        state_[uw] = d > 0 ? kAtHi : kAtLo;
+        w_[uw] = 0;
+        for (std::size_t k = 0; k < free_.size(); ++k)
+          if (free_[k] == who) {
+            free_.erase(free_.begin() + static_cast<std::ptrdiff_t>(k));
+            if (!FactorFrom(n, s, static_cast<int>(k))) return false;
+            break;
+          }
+      }
+      if (event == 3) {  // a row at a bound is freed
+        state_[uw] = kFree;
+        w_[uw] = 0;
+        if (!add_free(who)) return false;
+      }
+      if (event == 0) w_[ui] = 0;
+      if (event == 1) {
+        state_[ui] = dir > 0 ? kAtHi : kAtLo;
+        return true;
+      }
+    }
+    return false;
+  };
+  bool ok = true;
+  for (int pass = 0; pass < 2; ++pass) {  // rows without findex first, then friction rows
+    if (pass == 1 && findex) {
+      // All friction bounds from the normal forces as they are now (0 for no normal force).
+      for (int i = 0; i < n; ++i) {
+        if (findex[i] < 0) continue;
+        const auto ui = static_cast<std::size_t>(i);
+        const double normal = x[findex[i]];
+        hi_[ui] = normal == 0 ? 0 : std::fabs(hi[i] * normal);
+        lo_[ui] = -hi_[ui];
+      }
+    }
+    for (int i = 0; i < n; ++i)
+      if ((findex && findex[i] >= 0) == (pass == 1)) ok = take(i) && ok;
+  }
+  return ok;
+}
+
+}  // namespace ahhs::sim

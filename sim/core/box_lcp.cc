@@ -1,5 +1,6 @@
 #include "sim/core/box_lcp.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -61,6 +62,7 @@ bool BoxLcp::Solve(int n, const double* s, const double* r, const double* lo, co
   const auto un = static_cast<std::size_t>(n);
   state_.assign(un, 0);
   free_.clear();
+  bound_.clear();
   lo_.assign(lo, lo + n);
   hi_.assign(hi, hi + n);
   w_.assign(un, 0);
@@ -95,24 +97,26 @@ bool BoxLcp::Solve(int n, const double* s, const double* r, const double* lo, co
       }
       if (x[i] == lo_[ui] && wi > 0) {
         state_[ui] = kAtLo;
+        bound_.push_back(i);
         return true;
       }
       if (x[i] == hi_[ui] && wi < 0) {
         state_[ui] = kAtHi;
+        bound_.push_back(i);
         return true;
       }
       const double dir = wi < 0 ? 1.0 : -1.0;
       if (!FreeDirection(n, s, i)) return false;
       ++pivots_;
       // Changes of w per unit step, for the rows at a bound and for i.
-      for (int j = 0; j < n; ++j) {
-        const auto uj = static_cast<std::size_t>(j);
-        if ((state_[uj] != kAtLo && state_[uj] != kAtHi) && j != i) continue;
-        const double* sj = s + uj * un;
+      auto change_of = [&](int j) {
+        const double* sj = s + static_cast<std::size_t>(j) * un;
         double v = sj[i];
         for (int c : free_) v += sj[c] * dx_[static_cast<std::size_t>(c)];
-        dw_[uj] = dir * v;
-      }
+        dw_[static_cast<std::size_t>(j)] = dir * v;
+      };
+      for (int j : bound_) change_of(j);
+      change_of(i);
       // The longest step before something changes state.
       double t = -wi / dw_[ui];  // w_i reaches 0
       int event = 0, who = i;
@@ -133,9 +137,8 @@ bool BoxLcp::Solve(int n, const double* s, const double* r, const double* lo, co
           who = c;
         }
       }
-      for (int j = 0; j < n; ++j) {
+      for (int j : bound_) {
         const auto uj = static_cast<std::size_t>(j);
-        if (j == i || lo_[uj] == hi_[uj]) continue;
         double tj = kInf;
         if (state_[uj] == kAtLo && dw_[uj] < 0) tj = -w_[uj] / dw_[uj];
         if (state_[uj] == kAtHi && dw_[uj] > 0) tj = -w_[uj] / dw_[uj];
@@ -148,16 +151,15 @@ bool BoxLcp::Solve(int n, const double* s, const double* r, const double* lo, co
       if (t < 0) t = 0;
       x[i] += dir * t;
       for (int c : free_) x[c] += dir * t * dx_[static_cast<std::size_t>(c)];
-      for (int j = 0; j < n; ++j) {
-        const auto uj = static_cast<std::size_t>(j);
-        if (state_[uj] == kAtLo || state_[uj] == kAtHi || j == i) w_[uj] += t * dw_[uj];
-      }
+      for (int j : bound_) w_[static_cast<std::size_t>(j)] += t * dw_[static_cast<std::size_t>(j)];
+      w_[ui] += t * dw_[ui];
       const auto uw = static_cast<std::size_t>(who);
       if (event == 1) x[i] = dir > 0 ? hi_[ui] : lo_[ui];
       if (event == 2) {  // a free row reached a bound
         const double d = dir * dx_[uw];
         x[who] = d > 0 ? hi_[uw] : lo_[uw];
         state_[uw] = d > 0 ? kAtHi : kAtLo;
+        bound_.push_back(who);
         w_[uw] = 0;
         for (std::size_t k = 0; k < free_.size(); ++k)
           if (free_[k] == who) {
@@ -168,12 +170,14 @@ bool BoxLcp::Solve(int n, const double* s, const double* r, const double* lo, co
       }
       if (event == 3) {  // a row at a bound is freed
         state_[uw] = kFree;
+        bound_.erase(std::find(bound_.begin(), bound_.end(), who));
         w_[uw] = 0;
         if (!add_free(who)) return false;
       }
       if (event == 0) w_[ui] = 0;
       if (event == 1) {
         state_[ui] = dir > 0 ? kAtHi : kAtLo;
+        bound_.push_back(i);
         return true;
       }
     }

@@ -30,7 +30,8 @@ class BoxLcp {
   double* Row(int a);
 
   std::vector<int> state_;  // 0 not yet taken, 1 free (w = 0), 2 at lo, 3 at hi
-  std::vector<int> free_;
+  std::vector<int> free_;   // rows with w = 0, in the order of the factor
+  std::vector<int> bound_;  // rows at a bound that may leave it (lo < hi)
   std::vector<double> lo_, hi_, w_, dx_, dw_, chol_, rhs_;  // chol_: rows of cap_
   int cap_ = 0;
   int pivots_ = 0;

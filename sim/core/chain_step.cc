@@ -110,6 +110,7 @@ void ChainStep::AddHinge(dJointID hinge) {
   MulT(r2, d2, h.anchor2);
   MulT(r1, ax, h.axis1);
   MulT(r2, ax, h.axis2);
+  joints_.emplace_back(JointKind::kHinge, static_cast<int>(hinges_.size()));
   hinges_.push_back(h);
 }
 
@@ -132,17 +133,31 @@ void ChainStep::AddFixed(dJointID fixed) {
     f.qrel[0] = q1[0];
     for (int k = 1; k < 4; ++k) f.qrel[k] = -q1[k];
   }
+  joints_.emplace_back(JointKind::kFixed, static_cast<int>(fixed_.size()));
   fixed_.push_back(f);
 }
 
 void ChainStep::AddAngularMotor(dJointID motor) {
-  Motor m{motor, BodyIndex(dJointGetBody(motor, 0)), BodyIndex(dJointGetBody(motor, 1))};
+  Motor m{motor, BodyIndex(dJointGetBody(motor, 0)), BodyIndex(dJointGetBody(motor, 1)), -1};
   if (dJointGetAMotorMode(motor) != dAMotorUser || dJointGetAMotorNumAxes(motor) != 1 ||
       dJointGetAMotorAxisRel(motor, 0) != 1 || m.b1 < 0 || m.b2 < 0)
     throw std::invalid_argument("ChainStep: only a one-axis user motor relative to body 1");
   if (dJointGetAMotorParam(motor, dParamLoStop) > -kInf ||
       dJointGetAMotorParam(motor, dParamHiStop) < kInf)
     throw std::invalid_argument("ChainStep: angular motor stops are not modelled");
+  // A motor about a hinge's axis (the gear friction) uses the hinge's axis.
+  dVector3 ax;
+  dJointGetAMotorAxis(motor, 0, ax);
+  for (std::size_t h = 0; h < hinges_.size(); ++h) {
+    if (hinges_[h].b1 != m.b1 || hinges_[h].b2 != m.b2) continue;
+    dVector3 hx;
+    dJointGetHingeAxis(hinges_[h].id, hx);
+    const double a[3] = {ax[0], ax[1], ax[2]}, b[3] = {hx[0], hx[1], hx[2]};
+    double c[3];
+    Cross(a, b, c);
+    if (Dot3(c, c) < 1e-24 && Dot3(a, b) > 0) m.hinge = static_cast<int>(h);
+  }
+  joints_.emplace_back(JointKind::kMotor, static_cast<int>(motors_.size()));
   motors_.push_back(m);
 }
 
@@ -259,24 +274,23 @@ void ChainStep::BuildRows(double h) {
 
   unbounded_.clear();
   bounded_.clear();
-  auto add = [&](int b1, int b2, double cfm) -> Row& {
-    Row r{};
+  auto add = [&](int b1, int b2, double cfm, bool bounded) -> Row& {
+    std::vector<Row>& list = bounded ? bounded_ : unbounded_;
+    list.emplace_back();
+    Row& r = list.back();
     r.b1 = b1;
     r.b2 = b2;
     r.cfm = cfm;
     r.lo = -kInf;
     r.hi = kInf;
     r.findex = -1;
-    bounded_.push_back(r);  // sorted into the two lists below
-    return bounded_.back();
+    return r;
   };
-  // Rows are collected in bounded_ in joint order, then split.
   auto pos = [&](int b) { return dBodyGetPosition(bodies_[static_cast<std::size_t>(b)].id); };
   auto rot = [&](int b, double r[9]) { RotationOf(bodies_[static_cast<std::size_t>(b)].id, r); };
 
-  // The joints in chain order: each hinge, then the fixed joints and motors after it. Rows of
-  // one list keep the order they were added in.
-  for (const Hinge& hj : hinges_) {
+  // Each joint's rows: bilateral ones to unbounded_, the rest to bounded_.
+  auto hinge_rows = [&](const Hinge& hj) {
     double r1[9], r2[9], a1[3], a2[3], ax1[3], ax2[3];
     rot(hj.b1, r1);
     rot(hj.b2, r2);
@@ -286,7 +300,7 @@ void ChainStep::BuildRows(double h) {
     const dReal* p2 = pos(hj.b2);
     const double k = fps * world_erp;
     for (int d = 0; d < 3; ++d) {  // ball rows
-      Row& r = add(hj.b1, hj.b2, world_cfm);
+      Row& r = add(hj.b1, hj.b2, world_cfm, false);
       r.j1[d] = 1;
       r.j2[d] = -1;
       // angular parts: row d of -[a1]x for body 1 and of +[a2]x for body 2
@@ -304,7 +318,7 @@ void ChainStep::BuildRows(double h) {
     double b[3];
     Cross(ax1, ax2, b);
     for (const dReal* u : {p, q}) {  // axis rows
-      Row& r = add(hj.b1, hj.b2, world_cfm);
+      Row& r = add(hj.b1, hj.b2, world_cfm, false);
       for (int d = 0; d < 3; ++d) {
         r.j1[3 + d] = u[d];
         r.j2[3 + d] = -u[d];
@@ -330,9 +344,9 @@ void ChainStep::BuildRows(double h) {
       }
     }
     bool powered = fmax > 0;
-    if (!powered && limit == 0) continue;
+    if (!powered && limit == 0) return;
     if (limit && lo == hi) powered = false;
-    Row& r = add(hj.b1, hj.b2, world_cfm);
+    Row& r = add(hj.b1, hj.b2, world_cfm, !(limit && lo == hi));
     for (int d = 0; d < 3; ++d) {
       r.j1[3 + d] = ax1[d];
       r.j2[3 + d] = -ax1[d];
@@ -371,8 +385,8 @@ void ChainStep::BuildRows(double h) {
         r.hi = 0;
       }
     }
-  }
-  for (const Fixed& fj : fixed_) {
+  };
+  auto fixed_rows = [&](const Fixed& fj) {
     double r1[9], ofs[3];
     rot(fj.b1, r1);
     Mul(r1, fj.offset, ofs);
@@ -380,7 +394,7 @@ void ChainStep::BuildRows(double h) {
     const double erp = dJointGetFixedParam(fj.id, dParamERP);
     const double cfm = dJointGetFixedParam(fj.id, dParamCFM);
     for (int d = 0; d < 3; ++d) {  // linear rows, the joint's own softness
-      Row& r = add(fj.b1, fj.b2, cfm);
+      Row& r = add(fj.b1, fj.b2, cfm, false);
       r.j1[d] = 1;
       if (fj.b2 >= 0) {
         // row d of +[ofs]x
@@ -408,18 +422,24 @@ void ChainStep::BuildRows(double h) {
     double e[3];
     Mul(r1, v, e);
     for (int d = 0; d < 3; ++d) {  // angular rows, the world's softness
-      Row& r = add(fj.b1, fj.b2, world_cfm);
+      Row& r = add(fj.b1, fj.b2, world_cfm, false);
       r.j1[3 + d] = 1;
       if (fj.b2 >= 0) r.j2[3 + d] = -1;
       r.rhs = fps * world_erp * 2 * e[d];
     }
-  }
-  for (const Motor& mj : motors_) {
+  };
+  auto motor_rows = [&](const Motor& mj) {
     const double fmax = dJointGetAMotorParam(mj.id, dParamFMax);
-    if (!(fmax > 0)) continue;
+    if (!(fmax > 0)) return;
     dVector3 ax;
-    dJointGetAMotorAxis(mj.id, 0, ax);
-    Row& r = add(mj.b1, mj.b2, dJointGetAMotorParam(mj.id, dParamCFM));
+    if (mj.hinge >= 0) {  // the hinge's own axis, to the bit: the two rows are then one column
+      double r1[9];
+      rot(mj.b1, r1);
+      Mul(r1, hinges_[static_cast<std::size_t>(mj.hinge)].axis1, ax);
+    } else {
+      dJointGetAMotorAxis(mj.id, 0, ax);
+    }
+    Row& r = add(mj.b1, mj.b2, dJointGetAMotorParam(mj.id, dParamCFM), true);
     for (int d = 0; d < 3; ++d) {
       r.j1[3 + d] = ax[d];
       r.j2[3 + d] = -ax[d];
@@ -427,6 +447,12 @@ void ChainStep::BuildRows(double h) {
     r.rhs = dJointGetAMotorParam(mj.id, dParamVel);
     r.lo = -fmax;
     r.hi = fmax;
+  };
+  for (const auto& [kind, index] : joints_) {
+    const auto i = static_cast<std::size_t>(index);
+    if (kind == JointKind::kHinge) hinge_rows(hinges_[i]);
+    if (kind == JointKind::kFixed) fixed_rows(fixed_[i]);
+    if (kind == JointKind::kMotor) motor_rows(motors_[i]);
   }
   const double min_depth = dWorldGetContactSurfaceLayer(world_);
   const double max_vel = dWorldGetContactMaxCorrectingVel(world_);
@@ -460,7 +486,7 @@ void ChainStep::BuildRows(double h) {
     };
     const std::size_t normal_row = bounded_.size();
     {
-      Row& r = add(ct.b1, ct.b2, (mode & dContactSoftCFM) ? c.surface.soft_cfm : world_cfm);
+      Row& r = add(ct.b1, ct.b2, (mode & dContactSoftCFM) ? c.surface.soft_cfm : world_cfm, true);
       fill(r, n);
       r.rhs = std::min(fps * erp * depth, max_vel);
       r.lo = 0;
@@ -475,7 +501,7 @@ void ChainStep::BuildRows(double h) {
       const dReal* ts[2] = {t1, t2};
       for (int s = 0; s < 2; ++s) {
         if (!(mus[s] > 0)) continue;
-        Row& r = add(ct.b1, ct.b2, world_cfm);
+        Row& r = add(ct.b1, ct.b2, world_cfm, true);
         const double u[3] = {ts[s][0], ts[s][1], ts[s][2]};
         fill(r, u);
         r.lo = -mus[s];
@@ -485,29 +511,7 @@ void ChainStep::BuildRows(double h) {
     }
   }
 
-  // Split into bilateral and bounded rows, keeping their order; scale rhs and cfm by 1/h and
-  // subtract J (v / h + M^-1 f).
-  std::vector<Row> all;
-  all.swap(bounded_);
-  std::vector<int> new_index(all.size(), -1);
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    const Row& r = all[i];
-    if (r.findex < 0 && r.lo == -kInf && r.hi == kInf) {
-      unbounded_.push_back(r);
-    } else {
-      new_index[i] = static_cast<int>(bounded_.size());
-      bounded_.push_back(r);
-    }
-  }
-  for (Row& r : bounded_)
-    if (r.findex >= 0) r.findex = new_index[static_cast<std::size_t>(r.findex)];
-  // Bilateral rows by the first body they touch: with bodies added in chain order, a row's
-  // neighbours in the factor are then the rows of the joints next to it (a band).
-  std::stable_sort(unbounded_.begin(), unbounded_.end(), [](const Row& a, const Row& b) {
-    const int ka = a.b2 >= 0 ? std::min(a.b1, a.b2) : a.b1;
-    const int kb = b.b2 >= 0 ? std::min(b.b1, b.b2) : b.b1;
-    return ka < kb;
-  });
+  // Scale rhs and cfm by 1/h and subtract J (v / h + M^-1 f).
   std::vector<double>& tmp = work_;
   tmp.assign(6 * nbody, 0);
   for (std::size_t i = 0; i < nbody; ++i) {
@@ -618,54 +622,104 @@ void ChainStep::SolveRows() {
   for (int i = 0; i < nu; ++i)
     z[static_cast<std::size_t>(i)] = unbounded_[static_cast<std::size_t>(i)].rhs;
   forward(z.data(), 0);
-  y_.assign(static_cast<std::size_t>(nu) * static_cast<std::size_t>(nb), 0);
+  y_.resize(static_cast<std::size_t>(nu) * static_cast<std::size_t>(nb));
+  // The U rows touching each body (CSR), for the columns of A_UB.
+  body_start_.assign(nbody + 1, 0);
+  for (const Row& r : unbounded_) {
+    ++body_start_[static_cast<std::size_t>(r.b1) + 1];
+    if (r.b2 >= 0) ++body_start_[static_cast<std::size_t>(r.b2) + 1];
+  }
+  for (std::size_t b = 0; b < nbody; ++b) body_start_[b + 1] += body_start_[b];
+  body_rows_.resize(static_cast<std::size_t>(body_start_[nbody]));
+  {
+    std::vector<int>& fill = y_first_;  // reused as a cursor
+    fill.assign(body_start_.begin(), body_start_.end() - 1);
+    for (int i = 0; i < nu; ++i) {
+      const Row& r = unbounded_[static_cast<std::size_t>(i)];
+      body_rows_[static_cast<std::size_t>(fill[static_cast<std::size_t>(r.b1)]++)] = i;
+      if (r.b2 >= 0)
+        body_rows_[static_cast<std::size_t>(fill[static_cast<std::size_t>(r.b2)]++)] = i;
+    }
+  }
   y_first_.resize(static_cast<std::size_t>(nb));
+  // A bounded row with the Jacobian of the one before it (a servo and its gear friction) shares
+  // its column of Y and its entries of S.
+  root_.resize(static_cast<std::size_t>(nb));
   for (int c = 0; c < nb; ++c) {
+    const Row& rc = bounded_[static_cast<std::size_t>(c)];
+    root_[static_cast<std::size_t>(c)] = c;
+    if (c == 0) continue;
+    const Row& rp = bounded_[static_cast<std::size_t>(c - 1)];
+    if (rp.b1 == rc.b1 && rp.b2 == rc.b2 && std::memcmp(rp.j1, rc.j1, sizeof rc.j1) == 0 &&
+        std::memcmp(rp.j2, rc.j2, sizeof rc.j2) == 0)
+      root_[static_cast<std::size_t>(c)] = root_[static_cast<std::size_t>(c - 1)];
+  }
+  for (int c = 0; c < nb; ++c) {
+    if (root_[static_cast<std::size_t>(c)] != c) {
+      y_first_[static_cast<std::size_t>(c)] =
+          y_first_[static_cast<std::size_t>(root_[static_cast<std::size_t>(c)])];
+      continue;
+    }
     const Row& rc = bounded_[static_cast<std::size_t>(c)];
     double* y = &y_[static_cast<std::size_t>(c) * nu];
     const int start = first_of(rc);
     y_first_[static_cast<std::size_t>(c)] = start;
-    for (int i = start; i < nu; ++i)
-      y[i] = entry(rc, &jm_b_[12 * c], unbounded_[static_cast<std::size_t>(i)]);
+    for (int i = start; i < nu; ++i) y[i] = 0;
+    for (int side = 0; side < 2; ++side) {
+      const int b = side == 0 ? rc.b1 : rc.b2;
+      if (b < 0) continue;
+      for (int k = body_start_[static_cast<std::size_t>(b)];
+           k < body_start_[static_cast<std::size_t>(b) + 1]; ++k) {
+        const int i = body_rows_[static_cast<std::size_t>(k)];
+        const Row& ri = unbounded_[static_cast<std::size_t>(i)];
+        if (side == 1 && (ri.b1 == rc.b1 || ri.b2 == rc.b1)) continue;  // done with body 1
+        y[i] = entry(rc, &jm_b_[12 * c], ri);
+      }
+    }
     forward(y, start);
   }
   // S = A_BB - Y^T D^-1 Y and r = rhs_B - Y^T D^-1 z.
-  schur_.assign(static_cast<std::size_t>(nb) * static_cast<std::size_t>(nb), 0);
+  schur_.resize(static_cast<std::size_t>(nb) * static_cast<std::size_t>(nb));
   rhs_b_.resize(static_cast<std::size_t>(nb));
-  std::vector<double>& zd = zd_;
   std::vector<double>& inv_d = inv_d_;
-  zd.resize(static_cast<std::size_t>(nu));
   inv_d.resize(static_cast<std::size_t>(nu));
-  for (int i = 0; i < nu; ++i) {
+  for (int i = 0; i < nu; ++i)
     inv_d[static_cast<std::size_t>(i)] = 1 / L[static_cast<std::size_t>(i) * nu + i];
-    zd[static_cast<std::size_t>(i)] =
-        z[static_cast<std::size_t>(i)] * inv_d[static_cast<std::size_t>(i)];
-  }
-  // Y D^-1, column by column.
+  // Y D^-1, column by column (root columns only).
   yd_.resize(y_.size());
   for (int c = 0; c < nb; ++c) {
+    if (root_[static_cast<std::size_t>(c)] != c) continue;
     const double* yc = &y_[static_cast<std::size_t>(c) * nu];
     double* ydc = &yd_[static_cast<std::size_t>(c) * nu];
     for (int i = y_first_[static_cast<std::size_t>(c)]; i < nu; ++i)
       ydc[i] = yc[i] * inv_d[static_cast<std::size_t>(i)];
   }
+  // Without the rows' own CFM, S depends only on the columns: computed for root pairs.
   for (int c = 0; c < nb; ++c) {
+    const int rtc = root_[static_cast<std::size_t>(c)];
     const Row& rc = bounded_[static_cast<std::size_t>(c)];
-    const double* yc = &y_[static_cast<std::size_t>(c) * nu];
+    const double* ydc = &yd_[static_cast<std::size_t>(rtc) * nu];
     const int fc = y_first_[static_cast<std::size_t>(c)];
-    const double* ydc = &yd_[static_cast<std::size_t>(c) * nu];
     double rv = rc.rhs;
-    for (int i = fc; i < nu; ++i) rv -= yc[i] * zd[static_cast<std::size_t>(i)];
+    const double* zc = z.data();
+    for (int i = fc; i < nu; ++i) rv -= ydc[i] * zc[i];
     rhs_b_[static_cast<std::size_t>(c)] = rv;
     for (int d = c; d < nb; ++d) {
-      const Row& rd = bounded_[static_cast<std::size_t>(d)];
-      double s = entry(rc, &jm_b_[12 * c], rd);
-      if (d == c) s += rc.cfm;
-      const double* yd = &y_[static_cast<std::size_t>(d) * nu];
-      for (int i = std::max(fc, y_first_[static_cast<std::size_t>(d)]); i < nu; ++i)
-        s -= ydc[i] * yd[i];
-      schur_[static_cast<std::size_t>(c) * nb + d] = s;
-      schur_[static_cast<std::size_t>(d) * nb + c] = s;
+      const int rtd = root_[static_cast<std::size_t>(d)];
+      double v;
+      if (rtc != c || rtd != d) {
+        v = schur_[static_cast<std::size_t>(std::min(rtc, rtd)) * nb + std::max(rtc, rtd)];
+        if (rtc == rtd) v -= bounded_[static_cast<std::size_t>(rtc)].cfm;  // the root's diagonal
+      } else {
+        const Row& rd = bounded_[static_cast<std::size_t>(d)];
+        v = entry(rc, &jm_b_[12 * c], rd);
+        const double* yd = &y_[static_cast<std::size_t>(d) * nu];
+        for (int i = std::max(fc, y_first_[static_cast<std::size_t>(d)]); i < nu; ++i)
+          v -= ydc[i] * yd[i];
+      }
+      if (d == c) v += rc.cfm;
+      schur_[static_cast<std::size_t>(c) * nb + d] = v;
+      schur_[static_cast<std::size_t>(d) * nb + c] = v;
     }
   }
 
@@ -691,7 +745,7 @@ void ChainStep::SolveRows() {
   for (int c = 0; c < nb; ++c) {
     const double xc = x[c];
     if (xc == 0) continue;
-    const double* yc = &y_[static_cast<std::size_t>(c) * nu];
+    const double* yc = &y_[static_cast<std::size_t>(root_[static_cast<std::size_t>(c)]) * nu];
     for (int i = y_first_[static_cast<std::size_t>(c)]; i < nu; ++i) lu[i] -= yc[i] * xc;
   }
   for (int i = 0; i < nu; ++i) lu[i] *= inv_d[static_cast<std::size_t>(i)];

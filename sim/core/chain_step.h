@@ -30,6 +30,7 @@
 #include <ode/ode.h>
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "sim/core/box_lcp.h"
@@ -46,8 +47,9 @@ class ChainStep {
   ChainStep(dWorldID world, Params params);
 
   // The structure, in chain order (bodies and joints as they follow each other along the
-  // chain). A joint is read from ODE at every step (its parameters, the hinge angle); its
-  // anchors and relative pose are taken when it is added, as ODE takes them when it is set.
+  // chain: the factor of the joints' rows is then a band; any order gives the same answer). A joint
+  // is read from ODE at every step (its parameters, the hinge angle); its anchors and relative pose
+  // are taken when it is added, as ODE takes them when it is set.
   void AddBody(dBodyID body);
   void AddHinge(dJointID hinge);
   void AddFixed(dJointID fixed);         // after dJointSetFixed; second body may be the world
@@ -89,6 +91,7 @@ class ChainStep {
   struct Motor {
     dJointID id;
     int b1, b2;
+    int hinge;  // the hinge whose axis it turns about, or -1
   };
   struct Contact {
     dContact c;
@@ -114,6 +117,8 @@ class ChainStep {
   std::vector<Fixed> fixed_;
   std::vector<Motor> motors_;
   std::vector<Contact> contacts_;
+  enum class JointKind { kHinge, kFixed, kMotor };
+  std::vector<std::pair<JointKind, int>> joints_;  // in the order added
   bool resting_ = false;
   // Per step, reused.
   std::vector<double> inv_inertia_w_;  // 9 per body
@@ -126,9 +131,10 @@ class ChainStep {
   std::vector<double> y_;            // L^-1 A_UB, nu x nb (column-major)
   std::vector<int> y_first_;         // first non-zero of each column of y_
   std::vector<double> yd_;           // y_ times D^-1
-  std::vector<double> u_, z_, zd_, inv_d_;
+  std::vector<double> u_, z_, inv_d_;
+  std::vector<int> root_;  // per bounded row: the first row with its Jacobian
   std::vector<double> schur_, rhs_b_, lo_b_, hi_b_, work_;
-  std::vector<int> findex_b_, first_u_of_body_;
+  std::vector<int> findex_b_, first_u_of_body_, body_start_, body_rows_;
   BoxLcp lcp_;
   int last_nu_ = 0, last_nb_ = 0, last_pivots_ = 0;
   std::int64_t lcp_failures_ = 0;

@@ -28,6 +28,7 @@
 #include "modules/core/random.h"
 #include "modules/core/variation.h"
 #include "sim/core/drive.h"
+#include "sim/core/gait.h"
 #include "sim/core/scenario.h"
 
 namespace am = ahhs::modules;
@@ -87,10 +88,17 @@ void BenchController(const ControllerCase& c, bool smooth, long ticks, int repea
 // chaotic system (ODE's solver order is seeded), and the cost of a physics step follows the
 // number of ground contacts, so one seed alone is a poor estimate.
 void BenchSim(const ahhs::sim::ScenarioConfig& config, const char* drive_name, int repeats,
-              std::uint64_t first_seed, int seeds) {
+              std::uint64_t first_seed, int seeds, bool chain_solver) {
   namespace as = ahhs::sim;
   const as::DriveKind drive = as::ParseDrive(drive_name);
-  auto sim = as::MakeScenario(config);
+  std::unique_ptr<as::Scenario> sim;
+  if (chain_solver && config.kind == as::ScenarioKind::kGait) {
+    as::GaitConstants constants;
+    constants.chain_solver = true;
+    sim = std::make_unique<as::GaitScenario>(config, constants);
+  } else {
+    sim = as::MakeScenario(config);
+  }
   std::vector<double> per_seed, fitnesses;
   std::vector<double> command(static_cast<std::size_t>(sim->num_actuators()));
   for (int k = 0; k < seeds; ++k) {
@@ -388,6 +396,12 @@ int main(int argc, char** argv) {
                   "seeds seed, seed+1, ... (the median over them is reported)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
+  std::string solver = "ode";
+  sim->add_option("--solver", solver,
+                  "the gait's solver: ode (dWorldStep, the default physics) or chain (the "
+                  "experimental chain solver, sim/core/chain_step.h)")
+      ->check(CLI::IsMember({"ode", "chain"}))
+      ->capture_default_str();
   auto* arena =
       app.add_subcommand("arena", "one gait episode: physics only, fused and multi-process arenas");
   std::string arena_url = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
@@ -451,19 +465,20 @@ int main(int argc, char** argv) {
   if (sim->parsed()) {
     namespace as = ahhs::sim;
     std::printf(
-        "physics-only episodes, median of %d runs per seed, seeds %llu-%llu\n", sim_repeats,
-        static_cast<unsigned long long>(seed),
-        static_cast<unsigned long long>(seed) + static_cast<unsigned long long>(sim_seeds) - 1);
+        "physics-only episodes, median of %d runs per seed, seeds %llu-%llu, %s solver\n",
+        sim_repeats, static_cast<unsigned long long>(seed),
+        static_cast<unsigned long long>(seed) + static_cast<unsigned long long>(sim_seeds) - 1,
+        solver.c_str());
     for (const char* drive : {"wave", "zero"}) {
       for (as::Joints joints : {as::Joints::kDamped, as::Joints::kFixed}) {
         as::ScenarioConfig gait;
         gait.joints = joints;
-        BenchSim(gait, drive, sim_repeats, seed, sim_seeds);
+        BenchSim(gait, drive, sim_repeats, seed, sim_seeds, solver == "chain");
       }
     }
     as::ScenarioConfig pendulum;
     pendulum.kind = as::ScenarioKind::kPendulum;
-    BenchSim(pendulum, "wave", sim_repeats, seed, sim_seeds);
+    BenchSim(pendulum, "wave", sim_repeats, seed, sim_seeds, false);
   }
 
   if (controller->parsed()) {

@@ -86,6 +86,7 @@ std::unique_ptr<Scenario> MakeScenario(const ScenarioConfig& config) {
   GaitConstants k;
   if (config.physics_step > 0) k.physics_step_fixed = k.physics_step_damped = config.physics_step;
   k.friction *= config.friction_scale;
+  k.chain_solver = config.chain_solver;
   return std::make_unique<GaitScenario>(config, k);
 }
 

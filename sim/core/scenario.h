@@ -31,6 +31,9 @@ struct ScenarioConfig {
   // friction (pendulum). Never on the wire: a replay perturbs the physics slightly with it to
   // tell a robust behaviour from one that deterministic chaos happened to favour.
   double friction_scale = 1;
+  // A check, not a task setting: the gait with the chain solver (sim/core/chain_step.h)
+  // instead of dWorldStep. Never on the wire: a direct replay sets it to compare the two.
+  bool chain_solver = false;
   // The envelope of noise every episode of this configuration is perturbed with (a task
   // setting, on the wire in RESET and EVAL/REQUEST: sim/core/envelope.h).
   Envelope envelope;

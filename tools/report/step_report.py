@@ -4,14 +4,18 @@ A chaotic system has no converged trajectory, so the step is judged by whether t
 distribution* of each genome converges (docs/scenarios.md, "Physics step"): every
 genome is replayed on the same N held-out episodes (ahhs-replay --post-eval N) at the task's step
 h, at h / 2 and at 2 h. A step passes when, for every genome, its median and its over-the-wall
-share agree with those at h / 2 within 10 % and 0.15. Writes steps.csv (one row per genome and
-step) and summary.md (the table and the verdicts).
+share agree with those at h / 2 within 10 % and 0.15. The episodes are the same at every step,
+so the table also gives a paired bootstrap interval of each difference of medians: how much of a
+difference sampling alone could make. Writes steps.csv (one row per genome and step) and
+summary.md (the table and the verdicts).
 """
 import argparse
 import concurrent.futures
 import csv
 import json
 import os
+import random
+import statistics
 import tempfile
 
 import report_lib as report
@@ -20,6 +24,24 @@ import report_lib as report
 TASK_STEP = {"damped": 0.00625, "fixed": 0.0125}
 MEDIAN_TOLERANCE = 0.10  # relative, against h / 2
 SHARE_TOLERANCE = 0.15   # absolute, against h / 2
+BOOTSTRAP_RESAMPLES = 2000
+BOOTSTRAP_SEED = 2026    # the interval is the same every time
+
+
+def bootstrap_interval(row, half):
+    """The 90 % paired bootstrap interval of median(step) - median(h / 2) over the same episodes
+    (None when an episode failed at either step)."""
+    a, b = row["fitnesses"], half["fitnesses"]
+    if None in a or None in b or len(a) != len(b) or not a:
+        return None
+    rng = random.Random(BOOTSTRAP_SEED)
+    n = len(a)
+    diffs = []
+    for _ in range(BOOTSTRAP_RESAMPLES):
+        idx = [rng.randrange(n) for _ in range(n)]
+        diffs.append(statistics.median(a[i] for i in idx) - statistics.median(b[i] for i in idx))
+    diffs.sort()
+    return diffs[int(0.05 * len(diffs))], diffs[int(0.95 * len(diffs)) - 1]
 
 
 def post_evaluate(bin_dir, genome, args, step, tmp):
@@ -37,6 +59,8 @@ def post_evaluate(bin_dir, genome, args, step, tmp):
              "--post-eval-json", out]
     if args.envelope:
         argv += ["--envelope", args.envelope]
+    if args.solver != "ode":
+        argv += ["--solver", args.solver]
     report.run_replay(bin_dir, argv)
     with open(out) as f:
         return json.load(f)
@@ -67,12 +91,14 @@ def report_steps(args):
                              "failed": p["failed"], "median": p["median"],
                              "lower_quartile": p["lower_quartile"],
                              "upper_quartile": p["upper_quartile"], "min": p["min"],
-                             "success_share": p["success_share"]})
+                             "success_share": p["success_share"],
+                             "fitnesses": [e["fitness"] if e.get("fitness") is not None else None
+                                           for e in p["per_episode"]]})
     path = os.path.join(args.out, "steps.csv")
     with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w = csv.DictWriter(f, fieldnames=[k for k in rows[0] if k != "fitnesses"])
         w.writeheader()
-        w.writerows(rows)
+        w.writerows({k: v for k, v in r.items() if k != "fitnesses"} for r in rows)
     by = {(r["genome"], r["step"]): r for r in rows}
     verdict = {}
     for s in steps[1:]:
@@ -81,9 +107,11 @@ def report_steps(args):
     md = ["# Physics step by distribution", "",
           f"{len(args.genomes)} genomes, each post-evaluated on the same {args.episodes} held-out "
           f"episodes (envelope {args.envelope or 'of the run, or paper'}), {args.joints} docking, "
+          f"{args.solver} solver, "
           f"at {steps[0] * 1e3:g} ms, {steps[1] * 1e3:g} ms (the task's) and {steps[2] * 1e3:g} ms.",
           f"A step passes when every genome's median and over-the-wall share agree with those at "
-          f"{steps[0] * 1e3:g} ms within {MEDIAN_TOLERANCE:.0%} and {SHARE_TOLERANCE}.", "",
+          f"{steps[0] * 1e3:g} ms within {MEDIAN_TOLERANCE:.0%} and {SHARE_TOLERANCE}; in brackets "
+          f"after the verdict, the 90 % paired bootstrap interval of the difference of medians.", "",
           "| genome | " + " | ".join(f"{s * 1e3:g} ms: median (quartiles), over the wall"
                                      for s in steps) + " |",
           "|---|" + "---|" * len(steps)]
@@ -91,8 +119,11 @@ def report_steps(args):
         cells = []
         for s in steps:
             r = by[(g, s)]
-            mark = "" if s == steps[0] else (" (agrees)" if agrees(r, by[(g, steps[0])])
-                                             else " (differs)")
+            mark = ""
+            if s != steps[0]:
+                mark = " (agrees" if agrees(r, by[(g, steps[0])]) else " (differs"
+                ci = bootstrap_interval(r, by[(g, steps[0])])
+                mark += f"; {ci[0]:+.3f} to {ci[1]:+.3f})" if ci else ")"
             cells.append(f"{fmt(r['median'])} ({fmt(r['lower_quartile'])} / "
                          f"{fmt(r['upper_quartile'])}), {r['success_share']:.0%}{mark}")
         md.append(f"| `{g}` | " + " | ".join(cells) + " |")
@@ -115,6 +146,8 @@ def main(argv):
     p.add_argument("--episodes", type=int, default=50, help="held-out episodes per genome and step")
     p.add_argument("--envelope", choices=["none", "paper", "wide"],
                    help="default: a run's own envelope, else paper")
+    p.add_argument("--solver", default="ode", choices=["ode", "chain"],
+                   help="the gait's solver (ahhs-replay --solver)")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="replays at once")
     p.add_argument("-o", "--out", required=True)
     p.add_argument("--overwrite", action="store_true", help="replace a report in --out")

@@ -844,6 +844,7 @@ void RunStore::Export(bool check_existing) const {
            {"cost", r.evaluation.cost},
            {"eval_seed", r.eval_seed},
            {"config", config_}};
+    if (!physics_.empty()) m["physics"] = physics_;  // a replay takes the same physics
     if (!r.trials.empty()) {  // `fitness` is their aggregate; `eval_seed` the first trial's
       json trials = json::array();
       for (const auto& t : r.trials)

@@ -11,8 +11,12 @@ namespace ahhs::sim {
 // takes an exported run only when it was made with the same physics (tools/study), since the
 // run store cannot tell otherwise. CHANGELOG.md says what each change was.
 inline constexpr const char* kPendulumPhysicsVersion = "2026-12-01";
-inline constexpr const char* kGaitFixedPhysicsVersion = "2026-12-01";
-inline constexpr const char* kGaitDampedPhysicsVersion = "2026-12-01.2";
+inline constexpr const char* kGaitFixedPhysicsVersion = "2026-12-04";
+inline constexpr const char* kGaitDampedPhysicsVersion = "2026-12-04";
+// Earlier gait physics this build still replays (sim::ReplayablePhysics): the same model
+// solved by ODE's dWorldStep instead of the chain solver. The first study was made with them.
+inline constexpr const char* kGaitFixedDantzigPhysicsVersion = "2026-12-01";
+inline constexpr const char* kGaitDampedDantzigPhysicsVersion = "2026-12-01.2";
 
 struct PendulumConstants {
   // s per controller tick. The paper's slow sampling: a pendulum that keeps turning passes the
@@ -43,14 +47,15 @@ struct GaitConstants {
   // damped gaits then behaved differently at finer steps (docs/scenarios.md, "Physics step").
   double physics_step_fixed = 0.0125;
   double physics_step_damped = 0.00625;
-  // The solver. ODE's exact (Dantzig LCP) dWorldStep: with the iterative dWorldQuickStep the
-  // under-converged contact and servo forces made a chain under constant commands chatter and
+  // The solver's model: ODE's exact (Dantzig LCP) dWorldStep: with the iterative dWorldQuickStep
+  // the under-converged contact and servo forces made a chain under constant commands chatter and
   // creep (up to 0.9 m in 55 s); docs/scenarios.md has the measurements. The quick-step settings
   // below apply only with iterative_solver = true (kept to compare against).
   bool iterative_solver = false;
   // The chain solver (sim/core/chain_step.h): dWorldStep's constraint model solved with the
-  // chain's structure. Experimental until its distributions are validated (docs/performance.md).
-  bool chain_solver = false;
+  // chain's structure, about twice as fast for a moving chain, the same distributions
+  // (docs/performance.md). false: dWorldStep itself (the physics of 2026-12-01).
+  bool chain_solver = true;
   int solver_iterations = 16;  // dWorldSetQuickStepNumIterations
   // Successive over-relaxation of the quick-step solver (dWorldSetQuickStepW).
   double solver_relaxation_fixed = 1.3;

@@ -1,5 +1,6 @@
 #include "sim/core/scenario.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -30,6 +31,14 @@ const char* PhysicsVersion(ScenarioKind kind, Joints joints) {
   return joints == Joints::kDamped ? kGaitDampedPhysicsVersion : kGaitFixedPhysicsVersion;
 }
 
+std::vector<std::string> ReplayablePhysics(ScenarioKind kind, Joints joints) {
+  std::vector<std::string> versions{PhysicsVersion(kind, joints)};
+  if (kind == ScenarioKind::kGait)
+    versions.emplace_back(joints == Joints::kDamped ? kGaitDampedDantzigPhysicsVersion
+                                                    : kGaitFixedDantzigPhysicsVersion);
+  return versions;
+}
+
 std::string CheckConfig(const ScenarioConfig& c) {
   if (c.kind != ScenarioKind::kGait && c.kind != ScenarioKind::kPendulum)
     return "scenario: unknown";
@@ -42,6 +51,16 @@ std::string CheckConfig(const ScenarioConfig& c) {
     return "physics step: 0 (the task's) or up to 0.05 s";
   if (!std::isfinite(c.friction_scale) || c.friction_scale <= 0 || c.friction_scale > 10)
     return "friction scale: above 0, at most 10";
+  if (!c.physics.empty()) {
+    const auto versions = ReplayablePhysics(c.kind, c.joints);
+    if (std::find(versions.begin(), versions.end(), c.physics) == versions.end()) {
+      std::string list;
+      for (const auto& v : versions) list += (list.empty() ? "" : ", ") + v;
+      return std::string("physics: this build simulates the ") + ScenarioName(c.kind) +
+             " physics of " + list + ", not " + c.physics +
+             " (CHANGELOG.md names the release that does)";
+    }
+  }
   return CheckEnvelope(c.envelope);
 }
 
@@ -86,7 +105,10 @@ std::unique_ptr<Scenario> MakeScenario(const ScenarioConfig& config) {
   GaitConstants k;
   if (config.physics_step > 0) k.physics_step_fixed = k.physics_step_damped = config.physics_step;
   k.friction *= config.friction_scale;
-  k.chain_solver = config.chain_solver;
+  // The earlier physics: the same model solved by dWorldStep.
+  if (config.physics == (config.joints == Joints::kDamped ? kGaitDampedDantzigPhysicsVersion
+                                                          : kGaitFixedDantzigPhysicsVersion))
+    k.chain_solver = false;
   return std::make_unique<GaitScenario>(config, k);
 }
 

@@ -31,9 +31,10 @@ struct ScenarioConfig {
   // friction (pendulum). Never on the wire: a replay perturbs the physics slightly with it to
   // tell a robust behaviour from one that deterministic chaos happened to favour.
   double friction_scale = 1;
-  // A check, not a task setting: the gait with the chain solver (sim/core/chain_step.h)
-  // instead of dWorldStep. Never on the wire: a direct replay sets it to compare the two.
-  bool chain_solver = false;
+  // The physics version to simulate: "" for this build's (PhysicsVersion), or an earlier one
+  // this build still replays (ReplayablePhysics). Never on the wire: only a direct replay sets
+  // it, to reproduce a run made with an earlier physics.
+  std::string physics;
   // The envelope of noise every episode of this configuration is perturbed with (a task
   // setting, on the wire in RESET and EVAL/REQUEST: sim/core/envelope.h).
   Envelope envelope;
@@ -47,6 +48,8 @@ const char* JointsName(Joints joints);
 
 // The physics version (sim/core/constants.h) a fitness of this configuration is measured with.
 const char* PhysicsVersion(ScenarioKind kind, Joints joints);
+// The physics versions this build can simulate for a task: its own first, then earlier ones.
+std::vector<std::string> ReplayablePhysics(ScenarioKind kind, Joints joints);
 
 // Checks a config; returns "" or a message naming the bad field.
 std::string CheckConfig(const ScenarioConfig& config);

@@ -36,7 +36,7 @@ grep -q "600 trace (module, tick) pairs; 0 incomplete" $tmp/count.out || fail "t
 "$bin/ahhs-replay" $tmp/gait --physics-step 0.00625 >$tmp/out 2>&1 && grep -q "reproduced exactly" $tmp/out ||
   fail "--physics-step 0.00625 (the task's): $(cat $tmp/out)"
 "$bin/ahhs-replay" $tmp/gait --physics-step 0.0025 >$tmp/out 2>&1 || fail "--physics-step 0.0025: $(cat $tmp/out)"
-grep -Eq "reproduced exactly|in the changed physics \(--physics-step, --friction-scale, --envelope, --solver\) the replay differs by" $tmp/out || fail "$(cat $tmp/out)"
+grep -Eq "reproduced exactly|in the changed physics \(--physics-step, --friction-scale, --envelope, --physics\) the replay differs by" $tmp/out || fail "$(cat $tmp/out)"
 "$bin/ahhs-replay" $tmp/gait --physics-step 1 >$tmp/out 2>&1; [[ $? == 2 ]] || fail "--physics-step 1 accepted"
 echo "== ahhs-report"
 "$bin/ahhs-report" $tmp/a2-{1,2,3} $tmp/a1-{1,2,3} $tmp/gait -o $tmp/report >$tmp/report.out 2>&1 ||
@@ -87,12 +87,12 @@ knife=$AHHS_SOURCE_DIR/tests/episode/data/knife-edge-damped-ahhs1-120.json
 grep -q "^| genome | 3.125 ms: median (quartiles), over the wall | 6.25 ms: " $tmp/steps/summary.md &&
   grep -Eq "^- 6.25 ms: (passes|does not pass)$" $tmp/steps/summary.md &&
   grep -Eq "^- 12.5 ms: (passes|does not pass)$" $tmp/steps/summary.md || fail "steps summary: $(cat $tmp/steps/summary.md)"
-# With the chain solver; each verdict with the paired bootstrap interval of the difference.
-"$bin/ahhs-report" steps $knife --episodes 3 --jobs 2 --solver chain -o $tmp/steps3 >$tmp/steps3.out 2>&1 ||
-  { cat $tmp/steps3.out; fail "steps --solver chain"; }
-grep -q "damped docking, chain solver, at 3.125 ms" $tmp/steps3/summary.md &&
+# With a named physics; each verdict with the paired bootstrap interval of the difference.
+"$bin/ahhs-report" steps $knife --episodes 3 --jobs 2 --physics 2026-12-04 -o $tmp/steps3 >$tmp/steps3.out 2>&1 ||
+  { cat $tmp/steps3.out; fail "steps --physics"; }
+grep -q "damped docking, physics 2026-12-04, at 3.125 ms" $tmp/steps3/summary.md &&
   grep -Eq "\((agrees|differs); [+-][0-9.]+ to [+-][0-9.]+\)" $tmp/steps3/summary.md ||
-  fail "steps --solver chain: $(cat $tmp/steps3/summary.md)"
+  fail "steps --physics: $(cat $tmp/steps3/summary.md)"
 "$bin/ahhs-report" steps $tmp/nothing.json -o $tmp/steps2 >$tmp/err 2>&1 && fail "steps of a missing genome"
 grep -q "no such genome file or run directory" $tmp/err && ! grep -q Traceback $tmp/err ||
   fail "steps of a missing genome: $(cat $tmp/err)"

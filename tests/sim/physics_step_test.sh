@@ -3,8 +3,8 @@
 # fitness (the median over replays with the friction scaled by 0.975..1.025, ahhs-replay
 # --robustness) agrees at the task's step and at half of it. A single replay cannot tell: evolved
 # bests are knife-edges of deterministic chaos, and 1 % more friction changes them as much as a
-# finer step (docs/findings.md, "Physics step and deterministic chaos"). The chain solver's robust
-# medians agree with dWorldStep's the same way.
+# finer step (docs/findings.md, "Physics step and deterministic chaos"). The physics of 2026-12-04
+# (the chain solver) and of 2026-12-01 (dWorldStep) agree the same way.
 bin=${1:?usage: physics_step_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_scratch
@@ -46,18 +46,21 @@ close $d2 $d3 0.2 || fail "damped docking: robust median $d2 at 6.25 ms, $d3 at 
 # The check can tell: at 12.5 ms this gait reached the wall robustly, at finer steps it does not.
 ! close $d1 $d2 0.2 || fail "damped docking: 12.5 ms ($d1) should differ from 6.25 ms ($d2)"
 
-echo "== the chain solver (the same model, solved by the chain's structure) agrees with dWorldStep"
-c2=$(median damped-6-chain damped $damped 0.00625 --solver chain) || exit 1
-c1=$(median fixed-12-chain fixed $fixed 0.0125 --solver chain) || exit 1
-echo "robust medians with the chain solver: damped $c2 (dWorldStep $d2), fixed $c1 (dWorldStep $f1)"
-close $d2 $c2 0.2 || fail "damped docking: robust median $c2 with the chain solver, $d2 without"
-close $f1 $c1 0.1 || fail "fixed docking: robust median $c1 with the chain solver, $f1 without"
+echo "== the physics of 2026-12-04 (the chain solver) agrees with that of 2026-12-01 (dWorldStep)"
+# The fixed genome names the physics it was evolved with (2026-12-01); the damped one does not,
+# so its medians above are this build's.
+c1=$(median fixed-12-chain fixed $fixed 0.0125 --physics 2026-12-04) || exit 1
+o2=$(median damped-6-ode damped $damped 0.00625 --physics 2026-12-01.2) || exit 1
+echo "robust medians: fixed $f1 (2026-12-01) and $c1 (2026-12-04); damped $o2 (2026-12-01.2) and $d2 (2026-12-04)"
+close $f1 $c1 0.1 || fail "fixed docking: robust median $c1 in the physics of 2026-12-04, $f1 in 2026-12-01"
+close $o2 $d2 0.2 || fail "damped docking: robust median $d2 in the physics of 2026-12-04, $o2 in 2026-12-01.2"
 
 echo "== bad options"
 "$R" --genome $fixed --joints fixed --robustness-csv $tmp/x.csv >$tmp/out 2>&1
 [[ $? == 1 ]] && grep -q "robustness-csv needs --robustness N" $tmp/out || fail "$(cat $tmp/out)"
 "$R" --genome $fixed --joints fixed --friction-scale 0 >$tmp/out 2>&1
 [[ $? == 2 ]] || fail "--friction-scale 0: $(cat $tmp/out)"
-"$R" --genome $fixed --joints fixed --solver quick >$tmp/out 2>&1
-[[ $? == 2 ]] && grep -q "solver" $tmp/out || fail "--solver quick: $(cat $tmp/out)"
+"$R" --genome $fixed --joints fixed --physics 2026-11-22 >$tmp/out 2>&1
+[[ $? == 1 ]] && grep -q "physics: this build simulates the gait physics of 2026-12-04, 2026-12-01, not 2026-11-22" $tmp/out ||
+  fail "--physics 2026-11-22: $(cat $tmp/out)"
 echo PASS

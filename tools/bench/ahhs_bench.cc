@@ -92,9 +92,9 @@ void BenchSim(const ahhs::sim::ScenarioConfig& config, const char* drive_name, i
   namespace as = ahhs::sim;
   const as::DriveKind drive = as::ParseDrive(drive_name);
   std::unique_ptr<as::Scenario> sim;
-  if (chain_solver && config.kind == as::ScenarioKind::kGait) {
+  if (!chain_solver && config.kind == as::ScenarioKind::kGait) {
     as::GaitConstants constants;
-    constants.chain_solver = true;
+    constants.chain_solver = false;
     sim = std::make_unique<as::GaitScenario>(config, constants);
   } else {
     sim = as::MakeScenario(config);
@@ -396,10 +396,10 @@ int main(int argc, char** argv) {
                   "seeds seed, seed+1, ... (the median over them is reported)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  std::string solver = "ode";
+  std::string solver = "chain";
   sim->add_option("--solver", solver,
-                  "the gait's solver: ode (dWorldStep, the default physics) or chain (the "
-                  "experimental chain solver, sim/core/chain_step.h)")
+                  "the gait's solver: chain (this build's physics, sim/core/chain_step.h) or ode "
+                  "(ODE's dWorldStep, the same model, the physics of 2026-12-01)")
       ->check(CLI::IsMember({"ode", "chain"}))
       ->capture_default_str();
   auto* arena =

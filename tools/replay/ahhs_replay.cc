@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -86,13 +87,10 @@ int main(int argc, char** argv) {
                  "multiply the friction coefficients (gait) or pivot friction (pendulum) by this: "
                  "a perturbed physics (docs/scenarios.md)")
       ->check(CLI::Range(0.01, 10.0));
-  std::string solver = "ode";
-  app.add_option("--solver", solver,
-                 "the gait's solver: ode (dWorldStep, the task's) or chain (the experimental "
-                 "chain solver, the same model solved by the chain's structure; "
-                 "docs/performance.md)")
-      ->check(CLI::IsMember({"ode", "chain"}))
-      ->capture_default_str();
+  std::string physics;
+  app.add_option("--physics", physics,
+                 "the physics version to replay with (default: the one the run or genome file "
+                 "names, else this build's; docs/reference.md lists those this build keeps)");
   int robustness = 0;
   std::string robustness_csv;
   app.add_option("--robustness", robustness,
@@ -151,6 +149,8 @@ int main(int argc, char** argv) {
   ep::EpisodeSpec spec;
   am::MutationParams mutation;  // of the mutants: the run's, or the paper's
   std::optional<double> stored_fitness;
+  std::string stored_physics;  // the physics the run or genome file names
+  bool physics_changed = false;
   std::string what;
   try {
     if (run_dir.empty() == genome_file.empty())
@@ -187,6 +187,7 @@ int main(int argc, char** argv) {
         record = store->LoadIndividual(generation, individual);
       }
       spec.config = config.scenario;
+      stored_physics = store->physics();
       if (!envelope_options.given()) {
         envelope = config.scenario.envelope;
         if (!envelope.none()) post_envelope = envelope;
@@ -212,6 +213,8 @@ int main(int argc, char** argv) {
       if (!error.empty()) throw std::invalid_argument(error);
       nlohmann::json meta;
       spec.genome = am::LoadGenomeFile(genome_file, &meta);
+      if (meta.is_object() && meta.contains("physics") && meta["physics"].is_string())
+        stored_physics = meta["physics"].get<std::string>();
       const std::string fit = ep::CheckGenomeFits(spec.genome, spec.config);
       if (!fit.empty()) throw std::invalid_argument(genome_file + ": " + fit);
       spec.seed = seed;
@@ -233,8 +236,28 @@ int main(int argc, char** argv) {
     }
     spec.config.physics_step = physics_step;
     spec.config.friction_scale = friction_scale;
-    spec.config.chain_solver = solver == "chain";
     spec.config.envelope = envelope;
+    // The physics: --physics, else the run's or the genome file's if this build keeps it.
+    const auto keeps = ahhs::sim::ReplayablePhysics(spec.config.kind, spec.config.joints);
+    const std::string current = keeps.front();
+    if (!physics.empty()) {
+      spec.config.physics = physics;
+    } else if (!stored_physics.empty() &&
+               std::find(keeps.begin(), keeps.end(), stored_physics) != keeps.end()) {
+      spec.config.physics = stored_physics;
+    } else if (!stored_physics.empty()) {
+      std::cerr << "ahhs-replay: note: made with the " << ahhs::sim::ScenarioName(spec.config.kind)
+                << " physics of " << stored_physics
+                << ", which this build does not keep (CHANGELOG.md); replaying with " << current
+                << '\n';
+    }
+    {
+      const std::string error = ahhs::sim::CheckConfig(spec.config);
+      if (!error.empty()) throw std::invalid_argument(error);
+    }
+    if (spec.config.physics == current) spec.config.physics.clear();
+    physics_changed =
+        !physics.empty() && physics != (stored_physics.empty() ? current : stored_physics);
     if (!robustness_csv.empty() && robustness == 0)
       throw std::invalid_argument("--robustness-csv needs --robustness N");
     if (!post_eval_json.empty() && post_eval == 0)
@@ -328,10 +351,10 @@ int main(int argc, char** argv) {
         std::printf("stored fitness %s: reproduced exactly\n",
                     ahhs::base::ExactDouble(*stored_fitness).c_str());
       } else if (physics_step > 0 || friction_scale != 1 || !spec.config.envelope.none() ||
-                 spec.config.chain_solver) {
+                 physics_changed) {
         std::printf(
             "stored fitness %s: in the changed physics (--physics-step, --friction-scale, "
-            "--envelope, --solver) "
+            "--envelope, --physics) "
             "the replay differs by %.3g\n",
             ahhs::base::ExactDouble(*stored_fitness).c_str(), fitness - *stored_fitness);
       } else {

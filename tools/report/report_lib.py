@@ -77,6 +77,7 @@ class Run:
                 raise ReportError(f"{self.path}: summary.json is not an ahhs-study run summary")
             self.config = meta["evolve_config"]
             self.run_id = meta.get("run_id", "")
+            self.physics = meta.get("physics", "")
             rows = np.atleast_1d(np.genfromtxt(os.path.join(self.path, "generations.csv"),
                                                delimiter=",", names=True))
         except (OSError, ValueError, KeyError) as e:
@@ -94,9 +95,11 @@ class Run:
         if not self.exported:
             return [self.path]
         c = self.config
-        return ["--genome", os.path.join(self.path, "best.json"), "--scenario", c["scenario"],
+        argv = ["--genome", os.path.join(self.path, "best.json"), "--scenario", c["scenario"],
                 "--joints", c["joints"], "--modules", str(c["modules"]),
                 "--duration", repr(float(c["duration"]))]
+        # The physics the run was made with (an export's best.json may not name it).
+        return argv + (["--physics", self.physics] if self.physics else [])
 
     @property
     def task(self):

@@ -59,8 +59,8 @@ def post_evaluate(bin_dir, genome, args, step, tmp):
              "--post-eval-json", out]
     if args.envelope:
         argv += ["--envelope", args.envelope]
-    if args.solver != "ode":
-        argv += ["--solver", args.solver]
+    if args.physics:
+        argv += ["--physics", args.physics]
     report.run_replay(bin_dir, argv)
     with open(out) as f:
         return json.load(f)
@@ -107,7 +107,7 @@ def report_steps(args):
     md = ["# Physics step by distribution", "",
           f"{len(args.genomes)} genomes, each post-evaluated on the same {args.episodes} held-out "
           f"episodes (envelope {args.envelope or 'of the run, or paper'}), {args.joints} docking, "
-          f"{args.solver} solver, "
+          f"physics {args.physics or 'of each genome (else this build)'}, "
           f"at {steps[0] * 1e3:g} ms, {steps[1] * 1e3:g} ms (the task's) and {steps[2] * 1e3:g} ms.",
           f"A step passes when every genome's median and over-the-wall share agree with those at "
           f"{steps[0] * 1e3:g} ms within {MEDIAN_TOLERANCE:.0%} and {SHARE_TOLERANCE}; in brackets "
@@ -146,8 +146,8 @@ def main(argv):
     p.add_argument("--episodes", type=int, default=50, help="held-out episodes per genome and step")
     p.add_argument("--envelope", choices=["none", "paper", "wide"],
                    help="default: a run's own envelope, else paper")
-    p.add_argument("--solver", default="ode", choices=["ode", "chain"],
-                   help="the gait's solver (ahhs-replay --solver)")
+    p.add_argument("--physics", help="the physics version (ahhs-replay --physics; default: the "
+                                      "genome's, else this build's)")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="replays at once")
     p.add_argument("-o", "--out", required=True)
     p.add_argument("--overwrite", action="store_true", help="replace a report in --out")

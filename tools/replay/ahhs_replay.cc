@@ -340,6 +340,9 @@ int main(int argc, char** argv) {
     }
     std::printf("replayed %s with seed %llu\n", what.c_str(),
                 static_cast<unsigned long long>(spec.seed));
+    if (!spec.config.physics.empty())
+      std::printf("physics: %s (this build's is %s)\n", spec.config.physics.c_str(),
+                  ahhs::sim::PhysicsVersion(spec.config.kind, spec.config.joints));
     if (!result.ok) {
       std::printf("the episode failed: %s (a failed episode scores 0 in a run)\n",
                   result.error.c_str());

@@ -40,6 +40,8 @@ struct PendulumConstants {
   double bob_mass = 0.1;             // kg (reported only)
 };
 
+enum class GaitSolver { kChain, kDantzig, kQuickStep };
+
 struct GaitConstants {
   double control_period = 0.05;  // s per controller tick (20 Hz)
   // s per physics step. Fixed docking: 4 steps per control tick. Damped docking: 8, because
@@ -47,15 +49,14 @@ struct GaitConstants {
   // damped gaits then behaved differently at finer steps (docs/scenarios.md, "Physics step").
   double physics_step_fixed = 0.0125;
   double physics_step_damped = 0.00625;
-  // The solver's model: ODE's exact (Dantzig LCP) dWorldStep: with the iterative dWorldQuickStep
-  // the under-converged contact and servo forces made a chain under constant commands chatter and
-  // creep (up to 0.9 m in 55 s); docs/scenarios.md has the measurements. The quick-step settings
-  // below apply only with iterative_solver = true (kept to compare against).
-  bool iterative_solver = false;
-  // The chain solver (sim/core/chain_step.h): dWorldStep's constraint model solved with the
-  // chain's structure, about twice as fast for a moving chain, the same distributions
-  // (docs/performance.md). false: dWorldStep itself (the physics of 2026-12-01).
-  bool chain_solver = true;
+  // The solver. The model is ODE's exact (Dantzig LCP) dWorldStep: with the iterative
+  // dWorldQuickStep the under-converged contact and servo forces made a chain under constant
+  // commands chatter and creep (up to 0.9 m in 55 s); docs/scenarios.md has the measurements.
+  // kChain solves that model with the chain's structure (sim/core/chain_step.h), about twice as
+  // fast for a moving chain with the same distributions (docs/performance.md); kDantzig is
+  // dWorldStep itself (the physics of 2026-12-01); kQuickStep, with the settings below, is kept
+  // to compare against.
+  GaitSolver solver = GaitSolver::kChain;
   int solver_iterations = 16;  // dWorldSetQuickStepNumIterations
   // Successive over-relaxation of the quick-step solver (dWorldSetQuickStepW).
   double solver_relaxation_fixed = 1.3;

@@ -129,7 +129,7 @@ void GaitScenario::Build() {
   dWorldSetQuickStepW(
       world_, joints_ == Joints::kFixed ? k_.solver_relaxation_fixed : k_.solver_relaxation_damped);
   const int rest_steps = static_cast<int>(std::lround(k_.rest_time / step_));
-  if (rest_steps > 0 && !k_.chain_solver) {
+  if (rest_steps > 0 && k_.solver != GaitSolver::kChain) {
     dWorldSetAutoDisableFlag(world_, 1);
     dWorldSetAutoDisableLinearThreshold(world_, k_.rest_linear_speed);
     dWorldSetAutoDisableAngularThreshold(world_, k_.rest_angular_speed);
@@ -267,7 +267,7 @@ void GaitScenario::Build() {
       docks_.push_back(dock);
     }
   }
-  if (k_.chain_solver) {
+  if (k_.solver == GaitSolver::kChain) {
     ChainStep::Params rest;
     rest.rest_linear_speed = k_.rest_linear_speed;
     rest.rest_angular_speed = k_.rest_angular_speed;
@@ -348,7 +348,7 @@ void GaitScenario::PhysicsStep() {
     return;
   }
   dSpaceCollide(space_, this, &GaitScenario::NearCallback);
-  if (k_.iterative_solver)
+  if (k_.solver == GaitSolver::kQuickStep)
     dWorldQuickStep(world_, step_);
   else
     dWorldStep(world_, step_);

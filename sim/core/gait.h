@@ -97,7 +97,7 @@ class GaitScenario final : public Scenario {
   dGeomID ray_ = nullptr;
   std::vector<Module> modules_;
   std::vector<dJointID> docks_;
-  std::unique_ptr<ChainStep> chain_;  // the chain solver, when GaitConstants::chain_solver
+  std::unique_ptr<ChainStep> chain_;  // the chain solver (GaitSolver::kChain)
   std::vector<dGeomID> scenery_;
   std::vector<double> sensors_;  // num_modules x kGaitSensors
   std::array<double, 3> start_centroid_{};

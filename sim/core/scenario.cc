@@ -108,7 +108,7 @@ std::unique_ptr<Scenario> MakeScenario(const ScenarioConfig& config) {
   // The earlier physics: the same model solved by dWorldStep.
   if (config.physics == (config.joints == Joints::kDamped ? kGaitDampedDantzigPhysicsVersion
                                                           : kGaitFixedDantzigPhysicsVersion))
-    k.chain_solver = false;
+    k.solver = GaitSolver::kDantzig;
   return std::make_unique<GaitScenario>(config, k);
 }
 

@@ -186,7 +186,7 @@ GaitScenario ChainGait(Joints joints, int modules, double duration) {
   c.num_modules = modules;
   c.duration = duration;
   GaitConstants k;
-  k.chain_solver = true;
+  k.solver = GaitSolver::kChain;
   return GaitScenario(c, k);
 }
 }  // namespace
@@ -249,7 +249,7 @@ TEST_CASE("chain step: the gait's physics checks hold with it", "[sim][chain]") 
     c.kind = ScenarioKind::kGait;
     c.joints = j;
     GaitConstants dantzig;
-    dantzig.chain_solver = false;
+    dantzig.solver = GaitSolver::kDantzig;
     GaitScenario ode(c, dantzig);
     for (GaitScenario* g : {&chain, &ode}) {
       g->Reset(1);

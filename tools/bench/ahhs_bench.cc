@@ -94,7 +94,7 @@ void BenchSim(const ahhs::sim::ScenarioConfig& config, const char* drive_name, i
   std::unique_ptr<as::Scenario> sim;
   if (!chain_solver && config.kind == as::ScenarioKind::kGait) {
     as::GaitConstants constants;
-    constants.chain_solver = false;
+    constants.solver = as::GaitSolver::kDantzig;
     sim = std::make_unique<as::GaitScenario>(config, constants);
   } else {
     sim = as::MakeScenario(config);

@@ -64,7 +64,8 @@ class ChainStep {
   void Step(double h);
 
   // For tests and profiling: the rows of the last step (bilateral, bounded), the pivots its
-  // bounded rows took, and how many steps' pivoting did not finish (0 expected).
+  // bounded rows took, and how many steps' pivoting did not finish (GaitScenario fails the
+  // episode at the first).
   int last_bilateral_rows() const { return last_nu_; }
   int last_bounded_rows() const { return last_nb_; }
   int last_pivots() const { return last_pivots_; }

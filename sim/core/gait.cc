@@ -390,6 +390,11 @@ StepStatus GaitScenario::Step(const SubstepObserver& observer) {
                " (a body's position or velocity is non-finite or runaway)";
       return StepStatus::kFailed;
     }
+    if (chain_ && chain_->lcp_failures() > 0) {  // a step's forces are not a solution
+      error_ = "physics failed at tick " + std::to_string(tick_) +
+               " (the chain solver's pivoting did not finish)";
+      return StepStatus::kFailed;
+    }
     if (observer) observer((static_cast<double>(tick_) + (i + 1.0) / substeps) * k_.control_period);
   }
   ++tick_;

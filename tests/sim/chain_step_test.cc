@@ -153,6 +153,7 @@ TEST_CASE("chain step: one step gives dWorldStep's answer while friction holds",
                  << chain.chain->last_bounded_rows() << " bounded rows, "
                  << chain.chain->last_pivots() << " pivots");
     CHECK(chain.chain->last_bilateral_rows() == 49);
+    CHECK(chain.chain->lcp_failures() == 0);
     CHECK(MaxDifference(ode, chain) < 1e-10);
   }
 }
@@ -178,76 +179,15 @@ TEST_CASE("chain step: many steps stay close to dWorldStep's", "[sim][chain]") {
   CHECK(MaxDifference(ode, chain) < 1e-6);
 }
 
-namespace {
-GaitScenario ChainGait(Joints joints, int modules, double duration) {
-  ScenarioConfig c;
-  c.kind = ScenarioKind::kGait;
-  c.joints = joints;
-  c.num_modules = modules;
-  c.duration = duration;
-  GaitConstants k;
-  k.solver = GaitSolver::kChain;
-  return GaitScenario(c, k);
-}
-}  // namespace
-
-TEST_CASE("chain step: the gait's physics checks hold with it", "[sim][chain]") {
-  // The checks of gait_test.cc, shortened: a constant command (41 of the 221) moves nothing
-  // and its hinges settle, the servo lifts two modules and not three, the wave walks.
-  std::vector<std::array<double, 5>> commands;
-  for (int i = -10; i <= 10; ++i)
-    commands.push_back({i / 10.0, i / 10.0, i / 10.0, i / 10.0, i / 10.0});
-  std::mt19937_64 rng(2026);
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  for (int k = 0; k < 20; ++k) {
-    std::array<double, 5> c{};
-    for (double& v : c) v = uniform(rng);
-    commands.push_back(c);
-  }
+TEST_CASE("chain step: a 60-s wave walks as far as with dWorldStep when not chaotic",
+          "[sim][chain]") {
+  // gait_test.cc runs every check of the gait with the chain solver (the default); this one
+  // compares it with dWorldStep side by side on a whole episode.
   for (Joints j : {Joints::kDamped, Joints::kFixed}) {
-    for (const auto& command : commands) {
-      GaitScenario g = ChainGait(j, 5, 60);
-      g.Reset(1);
-      for (int m = 0; m < 5; ++m) g.SetActuators(m, &command[static_cast<std::size_t>(m)]);
-      std::array<double, 3> at5{};
-      std::array<double, 5> sum{}, sum2{};
-      int n = 0;
-      while (true) {
-        const StepStatus status = g.Step();
-        if (g.tick() == 100) at5 = g.Centroid();
-        if (g.tick() >= 200) {
-          for (std::size_t m = 0; m < 5; ++m) {
-            const double a = g.HingeAngle(static_cast<int>(m));
-            sum[m] += a;
-            sum2[m] += a * a;
-          }
-          ++n;
-        }
-        if (status != StepStatus::kRunning) break;
-      }
-      const auto at60 = g.Centroid();
-      INFO(JointsName(j) << " command " << command[0] << " " << command[1]);
-      CHECK(std::hypot(at60[0] - at5[0], at60[1] - at5[1]) <= 0.02);
-      for (std::size_t m = 0; m < 5; ++m) {
-        const double mean = sum[m] / n;
-        CHECK(std::sqrt(std::max(0.0, sum2[m] / n - mean * mean)) < 0.01);
-      }
-    }
-    auto lift = [&](int lifted) {
-      GaitScenario g = ChainGait(j, lifted + 1, 10);
-      g.Reset(1);
-      g.AnchorHalf(lifted, true);
-      const double up[1] = {-1.0};
-      g.SetActuators(lifted, up);
-      for (int t = 0; t < 60; ++t) g.Step();
-      return -g.HingeAngle(lifted);
-    };
-    CHECK(lift(2) > 1.5);
-    CHECK(lift(3) < 0.3);
-    GaitScenario chain = ChainGait(j, 5, 60);
     ScenarioConfig c;
     c.kind = ScenarioKind::kGait;
     c.joints = j;
+    GaitScenario chain(c);
     GaitConstants dantzig;
     dantzig.solver = GaitSolver::kDantzig;
     GaitScenario ode(c, dantzig);

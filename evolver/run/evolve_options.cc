@@ -41,7 +41,7 @@ void AddEvolveOptions(CLI::App& app, EvolveOptions* o) {
                  "episodes per individual and generation, each with a fresh seed (robust "
                  "evolution; the paper: 1)")
       ->check(CLI::Range(1, kMaxTrials))
-      ->capture_default_str();
+      ->default_str("1; 3 without --config and --scenario");
   app.add_option("--aggregate", o->aggregate, "an individual's fitness from its trials")
       ->check(CLI::IsMember({"mean", "median", "min"}))
       ->capture_default_str();
@@ -49,14 +49,14 @@ void AddEvolveOptions(CLI::App& app, EvolveOptions* o) {
                  "when the run ends, replay its best on N held-out episodes: median, quartiles, "
                  "min and the share that succeeds, also in RUN/post-eval.json")
       ->check(CLI::Range(0, kMaxPostEval))
-      ->capture_default_str();
+      ->default_str("0; 50 without --config and --scenario");
   app.add_option("--post-eval-envelope", o->post_eval_envelope,
                  "envelope of the held-out episodes (default: the run's, or paper for a run "
                  "without one)")
       ->check(CLI::IsMember({"none", "paper", "wide"}));
   o->envelope.Add(app,
                   "envelope of noise every episode is perturbed with: none (the paper), paper or "
-                  "wide (docs/scenarios.md)");
+                  "wide (docs/scenarios.md); default none, paper without --config and --scenario");
   app.add_option("--seed", o->seed, "run seed (every random draw of the run derives from it)")
       ->check(modules::SeedTextError)
       ->capture_default_str();
@@ -121,8 +121,15 @@ std::unique_ptr<RunStore> OpenRun(const CLI::App& app, EvolveOptions& o, EvolveC
     }
     store->Export(true);  // the database is the truth: rebuild files missing, short or wrong
   } else {
+    // The README's main job: without --config or --scenario the run is the robust damped gait
+    // (configs/gait-damped-ahhs2-30-robust.toml), options given on top of it.
+    const bool main_job = app.count("--config") == 0 && app.count("--scenario") == 0;
+    if (main_job) {
+      if (app.count("--trials") == 0) o.trials = kMainJob.trials;
+      if (app.count("--post-eval") == 0) o.post_eval = kMainJob.post_eval;
+    }
     config->scenario = o.task.Config();
-    config->scenario.envelope = o.envelope.Resolve();
+    config->scenario.envelope = o.envelope.Resolve(main_job ? kMainJob.envelope : "none");
     config->variant = o.variant == "ahhs1" ? modules::Variant::kAhhs1 : modules::Variant::kAhhs2;
     config->hormones = o.hormones;
     config->rules = o.rules;

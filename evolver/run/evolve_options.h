@@ -16,6 +16,16 @@
 
 namespace ahhs::evolver {
 
+// What a run without --config or --scenario (the README's main job) has beyond the defaults
+// below: the robust damped gait of configs/gait-damped-ahhs2-30-robust.toml
+// (tests/evolver/presets_test.sh checks that the two agree).
+struct MainJobSettings {
+  int trials;
+  const char* envelope;
+  int post_eval;
+};
+inline constexpr MainJobSettings kMainJob{3, "paper", 50};
+
 // ahhs-evolve's command line.
 struct EvolveOptions {
   sim::ScenarioOptions task;

@@ -53,6 +53,15 @@ printf 'envelope = "paper"\n"envelope.friction" = 0.1\ntrials = 2\n' >/tmp/prese
 # Options given on the command line override the preset.
 "$E" --config "$src/configs/gait-damped-ahhs2-30.toml" --generations 7 --seed 5 --show-config | grep -q '"generations": 7' ||
   fail "override"
+# The README's main job: without --config or --scenario, ahhs-evolve is the robust damped preset;
+# with --scenario it starts from the paper's defaults; options still override.
+"$E" --show-config >/tmp/preset.$$.json || fail "no --config"
+"$E" --config "$src/configs/gait-damped-ahhs2-30-robust.toml" --show-config |
+  cmp -s - /tmp/preset.$$.json || fail "the main job is not configs/gait-damped-ahhs2-30-robust.toml"
+"$E" --scenario gait --show-config | grep -Eq '"(trials|envelope|post_eval)"' &&
+  fail "--scenario without --config is not the paper's defaults"
+"$E" --trials 2 --envelope none --post-eval 0 --show-config | grep -Eq '"(envelope|post_eval)"|"trials": 3' &&
+  fail "options do not override the main job"
 echo 'rules = "many"' >/tmp/preset.$$.json
 "$E" --config /tmp/preset.$$.json --show-config >/dev/null 2>&1 && fail "a bad preset value was accepted"
 echo "PASS ($n presets)"

@@ -344,11 +344,12 @@ void BenchEvolve(const std::string& name, const std::string& options, int genera
       (workers >= 0 ? " --workers " + std::to_string(workers) : "") + " 2>&1";
   const auto start = std::chrono::steady_clock::now();
   FILE* pipe = popen(command.c_str(), "r");
-  std::string output, best = "?";
+  std::string output, best = "?", held_out;
   char line[4096];
   while (pipe && std::fgets(line, sizeof line, pipe)) {
     output += line;
     if (std::strncmp(line, "best fitness: ", 14) == 0) best = std::string(line + 14);
+    if (std::strncmp(line, "post-evaluation on ", 19) == 0) held_out = std::string(line);
   }
   const int status = pipe ? pclose(pipe) : -1;
   const double wall =
@@ -360,6 +361,7 @@ void BenchEvolve(const std::string& name, const std::string& options, int genera
   if (!best.empty() && best.back() == '\n') best.pop_back();
   std::printf("%-36s %3d generations: %7.1f s wall (%.2f s per generation); best %s\n",
               name.c_str(), generations, wall, wall / generations, best.c_str());
+  if (!held_out.empty()) std::printf("  %s", held_out.c_str());
   std::fflush(stdout);
 }
 
@@ -420,8 +422,11 @@ int main(int argc, char** argv) {
               evolve_url = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
   int evolve_generations = 200, evolve_workers = -1, evolve_trials = 1;
   std::string evolve_envelope = "none";
-  evolve->add_option("--task", evolve_task, "pendulum, gait-damped, gait-fixed or all")
-      ->check(CLI::IsMember({"pendulum", "gait-damped", "gait-fixed", "all"}))
+  evolve->add_option("--task", evolve_task,
+                     "pendulum, gait-damped, gait-fixed, all, or main-job (the README's: ahhs-evolve "
+                     "with neither --config nor --scenario, its post-evaluation included; "
+                     "--trials and --envelope do not apply)")
+      ->check(CLI::IsMember({"pendulum", "gait-damped", "gait-fixed", "all", "main-job"}))
       ->capture_default_str();
   evolve->add_option("--generations", evolve_generations, "generations per run (paper: 200)")
       ->check(CLI::Range(1, 100000))
@@ -444,6 +449,9 @@ int main(int argc, char** argv) {
     if (evolve_trials > 1 || evolve_envelope != "none")
       std::printf("robust: %d trials per individual, envelope %s\n", evolve_trials,
                   evolve_envelope.c_str());
+    if (evolve_task == "main-job")
+      BenchEvolve("the README's main job (robust damped)", "--seed 1", evolve_generations,
+                  evolve_url, evolve_workers);
     if (evolve_task == "pendulum" || evolve_task == "all")
       BenchEvolve(
           "pendulum AHHS2 15 H x 15 R, pop 200",

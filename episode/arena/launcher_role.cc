@@ -21,11 +21,8 @@ namespace ahhs::episode {
 using Clock = std::chrono::steady_clock;
 
 namespace {
-std::string HashText(std::int64_t hash) {
-  char text[20];
-  std::snprintf(text, sizeof text, "%016llx",
-                static_cast<unsigned long long>(static_cast<std::uint64_t>(hash)));
-  return text;
+std::string HashText(std::int64_t hash) {  // a wire hash (int64) as files show it
+  return modules::HashText(static_cast<std::uint64_t>(hash));
 }
 }  // namespace
 

@@ -43,9 +43,7 @@ void PrintRunSummary(const RunStore& store, const EvolveConfig& config) {
 void PostEvaluateBest(const RunStore& store, const EvolveConfig& config) {
   const IndividualRecord best = store.Best();
   const std::string path = store.dir() + "/post-eval.json";
-  char hash[20];
-  std::snprintf(hash, sizeof hash, "%016llx",
-                static_cast<unsigned long long>(modules::GenomeHash(best.genome)));
+  const std::string hash = modules::GenomeHashText(best.genome);
   std::error_code ec;
   if (std::filesystem::is_regular_file(path, ec)) {
     try {

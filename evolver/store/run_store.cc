@@ -479,10 +479,7 @@ std::vector<IndividualRecord> RunStore::LoadIndividuals(int generation, int inde
     } catch (const std::exception& e) {
       throw RunStoreError(dir_ + ": " + e.what());
     }
-    char hash[20];
-    std::snprintf(hash, sizeof hash, "%016llx",
-                  static_cast<unsigned long long>(modules::GenomeHash(r.genome)));
-    if (get.Text(2) != hash)
+    if (get.Text(2) != modules::GenomeHashText(r.genome))
       throw RunStoreError(dir_ + ": generation " + std::to_string(generation) + " individual " +
                           std::to_string(r.index) +
                           (text.empty() ? ": the genome bred again does not match its hash (this "
@@ -570,9 +567,7 @@ void RunStore::CommitGeneration(const GenerationRecord& record,
                   "eval_seed, fitness, cost, worker, attempt, wall_time, message) "
                   "VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
     for (const auto& r : individuals) {
-      char hash[20];
-      std::snprintf(hash, sizeof hash, "%016llx",
-                    static_cast<unsigned long long>(modules::GenomeHash(r.genome)));
+      const std::string hash = modules::GenomeHashText(r.genome);
       add.Bind(1, static_cast<std::int64_t>(record.generation))
           .Bind(2, static_cast<std::int64_t>(r.index))
           .Bind(3, StoresInFull(record.generation) ? modules::GenomeToJson(r.genome).dump()
@@ -697,10 +692,8 @@ bool RunStore::BestFileIsWhole(const fs::path& path, const GenerationRecord& g) 
   try {
     json meta;
     const modules::Genome genome = modules::LoadGenomeFile(path.string(), &meta);
-    char hash[20];
-    std::snprintf(hash, sizeof hash, "%016llx",
-                  static_cast<unsigned long long>(modules::GenomeHash(genome)));
-    return stored.Text(0) == hash && meta.at("generation").get<int>() == g.generation &&
+    return stored.Text(0) == modules::GenomeHashText(genome) &&
+           meta.at("generation").get<int>() == g.generation &&
            meta.at("individual").get<int>() == g.stats.best_index &&
            meta.at("fitness").get<double>() == g.stats.best;
   } catch (const std::exception&) {

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 namespace ahhs::modules {
@@ -183,5 +184,13 @@ const char* Ahhs2PartName(int part) {
   static const char* names[] = {"idle", "sensor", "linear", "nonlinear", "actuator"};
   return part >= 0 && part < 5 ? names[part] : "?";
 }
+
+std::string HashText(std::uint64_t hash) {
+  char text[20];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
+std::string GenomeHashText(const Genome& genome) { return HashText(GenomeHash(genome)); }
 
 }  // namespace ahhs::modules

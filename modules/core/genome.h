@@ -99,6 +99,9 @@ std::string CheckGenome(const Genome& genome);
 // FNV-1a 64 over the genome's shape and the exact bits of every value: equal hashes mean the
 // same controller (used to check what a module runs).
 std::uint64_t GenomeHash(const Genome& genome);
+// A genome hash as files and messages show it: 16 lower-case hex digits.
+std::string HashText(std::uint64_t hash);
+std::string GenomeHashText(const Genome& genome);  // HashText(GenomeHash(genome))
 
 const char* VariantName(Variant v);      // "ahhs1" / "ahhs2"
 const char* Ahhs1TypeName(Ahhs1Type t);  // "idle", "sensor", "hormone", "actuator"

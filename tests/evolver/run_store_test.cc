@@ -278,9 +278,7 @@ TEST_CASE("a format-1 run is compacted to format 4 only when breeding gives it b
   const auto g29 = other->LoadGeneration(29);
   other.reset();
   std::string text = modules::GenomeToJson(g29[3].genome).dump();
-  char hash[20];
-  std::snprintf(hash, sizeof hash, "%016llx",
-                static_cast<unsigned long long>(modules::GenomeHash(g29[3].genome)));
+  const std::string hash = modules::GenomeHashText(g29[3].genome);
   std::string quoted;
   for (char c : text) quoted += c == '\'' ? std::string("''") : std::string(1, c);
   Sql(copy, "UPDATE individuals SET genome = '" + quoted + "', genome_hash = '" + hash +

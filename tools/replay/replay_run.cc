@@ -28,13 +28,6 @@ namespace ep = ahhs::episode;
 namespace am = ahhs::modules;
 using TextWriter = ahhs::base::AtomicTextFile;
 
-std::string HashText(const am::Genome& genome) {
-  char hash[20];
-  std::snprintf(hash, sizeof hash, "%016llx",
-                static_cast<unsigned long long>(am::GenomeHash(genome)));
-  return hash;
-}
-
 }  // namespace
 
 int RunReplay(const ReplayOptions& o, const ReplayTarget& t) {
@@ -103,7 +96,7 @@ int RunReplay(const ReplayOptions& o, const ReplayTarget& t) {
       if (!o.post_eval_json.empty()) {
         nlohmann::json doc = p.ToJson();
         doc["description"] = p.Describe(t.spec.config.kind);
-        doc["genome_hash"] = HashText(t.spec.genome);
+        doc["genome_hash"] = am::GenomeHashText(t.spec.genome);
         ahhs::base::WriteFileAtomically(o.post_eval_json, doc.dump(2) + "\n");
       }
     }

@@ -6,7 +6,7 @@
 #include <iostream>
 #include <sstream>
 
-namespace ahhs::cli {
+namespace ahhs::base {
 
 namespace {
 
@@ -123,4 +123,4 @@ std::string RefuseExisting(const std::vector<std::string>& paths, bool overwrite
   return "";
 }
 
-}  // namespace ahhs::cli
+}  // namespace ahhs::base

@@ -2,15 +2,15 @@
 //   0  done;  1  the work failed (a run, an episode, a file);  2  a usage error (bad option,
 //   bad value, unknown key in a config file);  130  interrupted (Ctrl-C), where resumable.
 // A usage error is one line, "PROGRAM: what", with the nearest known option when a name is
-// mistyped, and the hint to run --help. It lives beside the bus because every program links
-// the bus; it has nothing to do with messages.
+// mistyped, and the hint to run --help. Namespace ahhs::base like the rest of base/; its own
+// library (ahhs_cli) because only programs need CLI11.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
-namespace ahhs::cli {
+namespace ahhs::base {
 
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;
@@ -30,4 +30,4 @@ std::vector<std::string> NearestOptions(const CLI::App& app, const std::string& 
 // directory unless told to (--overwrite; ahhs-logger --force, as lcm-logger).
 std::string RefuseExisting(const std::vector<std::string>& paths, bool overwrite);
 
-}  // namespace ahhs::cli
+}  // namespace ahhs::base

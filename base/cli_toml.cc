@@ -8,7 +8,7 @@
 
 #include "base/cli.h"
 
-namespace ahhs::cli {
+namespace ahhs::base {
 
 namespace {
 
@@ -117,4 +117,4 @@ void AddStrictTomlConfig(CLI::App& app, const std::string& help) {
   app.set_config("--config", "", help);
 }
 
-}  // namespace ahhs::cli
+}  // namespace ahhs::base

@@ -7,9 +7,9 @@
 
 #include <CLI/CLI.hpp>
 
-namespace ahhs::cli {
+namespace ahhs::base {
 
 // Adds `--config FILE` to `app`, read strictly as above.
 void AddStrictTomlConfig(CLI::App& app, const std::string& help);
 
-}  // namespace ahhs::cli
+}  // namespace ahhs::base

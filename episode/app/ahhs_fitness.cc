@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", timeout,
                  "give up after this many seconds without a final result (0 = never)")
       ->check(CLI::NonNegativeNumber);
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   try {
     auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
     ahhs::episode::FitnessNode node(bus.get(), arena);
@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
         if (f->status != ahhs::fitness_t::OK) {
           std::fprintf(stderr, "ahhs-fitness: episode %lld failed: %s\n",
                        static_cast<long long>(f->episode), f->message.c_str());
-          return ahhs::cli::kExitFailure;
+          return ahhs::base::kExitFailure;
         }
         std::printf("episode %lld: %d states, %d ticks missed%s%s\nfitness: %.17g\n",
                     static_cast<long long>(f->episode), f->states_seen, f->states_missed,
@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
       if (timeout > 0 &&
           std::chrono::steady_clock::now() - start > std::chrono::duration<double>(timeout)) {
         std::fprintf(stderr, "ahhs-fitness: no final fitness within %.0f s\n", timeout);
-        return ahhs::cli::kExitFailure;
+        return ahhs::base::kExitFailure;
       }
     }
   } catch (const std::exception& e) {

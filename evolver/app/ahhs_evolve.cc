@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
   CLI::App app{"ahhs-evolve: evolves hormone controllers (the paper's GA) on evaluation workers"};
   ev::EvolveOptions options;
   ev::AddEvolveOptions(app, &options);
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
     first = store->LastGeneration() + 1;
   } catch (const std::exception& e) {
     std::cerr << "ahhs-evolve: " << e.what() << '\n';
-    return ahhs::cli::kExitFailure;
+    return ahhs::base::kExitFailure;
   }
   const std::string dir = store->dir();
   const std::string wire_run = store->run_id() + "/s" + std::to_string(session);
@@ -179,7 +179,7 @@ int main(int argc, char** argv) {
     progress.Clear();
     std::cerr << "ahhs-evolve: " << e.what() << "\nthe run is stored up to generation "
               << stored_up_to() << "; continue with: " << self << " --resume " << dir << '\n';
-    exit_code = ahhs::cli::kExitFailure;
+    exit_code = ahhs::base::kExitFailure;
   }
   local.StopAll(std::chrono::seconds(5));
   if (exit_code != 0) return exit_code;
@@ -189,7 +189,7 @@ int main(int argc, char** argv) {
     if (config.post_eval > 0) ev::PostEvaluateBest(*store, config);
   } catch (const std::exception& e) {
     std::cerr << "ahhs-evolve: " << e.what() << '\n';
-    return ahhs::cli::kExitFailure;
+    return ahhs::base::kExitFailure;
   }
   return 0;
 }

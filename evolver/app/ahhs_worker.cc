@@ -26,10 +26,10 @@ int main(int argc, char** argv) {
   ahhs::evolver::WorkerOptions o;
   o.url = o.arena_url = ahhs::bus::kDefaultLcmUrl;
   ahhs::evolver::AddWorkerOptions(app, &o);
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   if (const std::string error = ahhs::evolver::CheckWorkerOptions(app, &o); !error.empty()) {
     std::cerr << "ahhs-worker: " << error << '\n';
-    return ahhs::cli::kExitUsage;
+    return ahhs::base::kExitUsage;
   }
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);

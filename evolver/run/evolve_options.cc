@@ -14,7 +14,7 @@
 namespace ahhs::evolver {
 
 void AddEvolveOptions(CLI::App& app, EvolveOptions* o) {
-  cli::AddStrictTomlConfig(app, "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
+  base::AddStrictTomlConfig(app, "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
   o->task.Add(app, "", "episode length, simulated seconds (0: the task's, 60 s gait / 3000 ticks)");
   app.add_option("--variant", o->variant, "controller: ahhs1 or ahhs2")
       ->check(CLI::IsMember({"ahhs1", "ahhs2"}))

@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
   run->add_option("--ticks", ticks, "ticks to run (default: up to the CSV's last tick)")
       ->check(CLI::PositiveNumber);
 
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   try {
     if (random->parsed()) {

@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
                  "lockstep timeout; 0: wait for every packet, exact lockstep)")
       ->check(CLI::Range(0, 600000))
       ->capture_default_str();
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   options.hormone_timeout = std::chrono::milliseconds(timeout_ms);
   try {
     auto bus = ahhs::bus::OpenBusWithFaultInjection(url);

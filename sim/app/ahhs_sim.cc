@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
   envelope_options.Add(app,
                        "with --drive: an envelope of noise drawn from --seed (default none; in bus "
                        "mode each RESET brings its own; docs/scenarios.md)");
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   as::Envelope envelope;
   try {
     envelope = envelope_options.Resolve();
@@ -95,14 +95,14 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--envelope needs --drive (in bus mode RESET brings it)");
   } catch (const std::invalid_argument& e) {
     std::cerr << "ahhs-sim: " << e.what() << '\n';
-    return ahhs::cli::kExitUsage;
+    return ahhs::base::kExitUsage;
   }
 
   if (physics == "none") {
     if (drive_opt->count() > 0 || !hardware_modules.empty()) {
       std::cerr << "ahhs-sim: --drive and --hardware-modules need the physics; --physics none "
                    "serves the bus only\n";
-      return ahhs::cli::kExitUsage;
+      return ahhs::base::kExitUsage;
     }
     try {
       server_options.arena = node_options.arena;

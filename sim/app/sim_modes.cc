@@ -134,7 +134,7 @@ int RunStandalone(const StandaloneOptions& o) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (status == as::StepStatus::kFailed) {
     std::cerr << "ahhs-sim: episode failed: " << sim->error() << '\n';
-    return ahhs::cli::kExitFailure;
+    return ahhs::base::kExitFailure;
   }
   std::printf(
       "scenario %s, drive %s, seed %llu: %lld ticks, %.1f s simulated in %.3f s wall (%.0fx real "

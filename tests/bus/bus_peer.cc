@@ -209,7 +209,7 @@ int main(int argc, char** argv) {
   app.add_option("--lcm-url", url, "LCM URL")->required();
   app.add_option("--pings", pings, "ping-pong round trips")->check(CLI::NonNegativeNumber);
   app.add_option("--burst", burst, "messages in the burst")->check(CLI::NonNegativeNumber);
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   try {
     ahhs::bus::LcmBus bus(url);
     if (role == "spam") return Spammer(bus, channels, seconds);

@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
   app.add_flag("--realtime", realtime);
   std::string arena = "AHHS";
   app.add_option("--arena", arena);
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   auto probe = sim::MakeScenario(testing::ConfigOf(e));
   modules::Rng rng(static_cast<std::uint64_t>(e.seed));

@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   app.add_option("--ticks", ticks)->required();
   bool trace = false;
   app.add_flag("--trace", trace, "expect TRACE messages instead of hormone packets");
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   lcm::LogFile log(path, "r");
   if (!log.good()) {

@@ -261,7 +261,7 @@ int main(int argc, char** argv) {
   int modules = 3;
   app.add_option("--modules", modules);
   app.add_option("--seconds", seconds);
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   bus::LcmBus bus(url);
   const bus::ArenaChannels ch(arena);
   int answered = 0, published = 0;

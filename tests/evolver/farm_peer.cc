@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
   app.add_option("--lcm-url", url)->required();
   app.add_option("--seconds", seconds);
   app.add_option("--worker", worker);
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   bus::LcmBus bus(url);
   const auto end = std::chrono::steady_clock::now() +
                    std::chrono::milliseconds(static_cast<long>(seconds * 1000));

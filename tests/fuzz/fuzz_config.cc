@@ -17,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   double rate = 0.15;
   std::uint64_t seed = 1;
   bool overwrite = false;
-  ahhs::cli::AddStrictTomlConfig(app, "config");
+  ahhs::base::AddStrictTomlConfig(app, "config");
   app.add_option("--scenario", scenario)->check(CLI::IsMember({"gait", "pendulum"}));
   app.add_option("--rules", rules);
   app.add_option("--mutation-rate", rate);

@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed);
   app.add_option("--duration", duration);
   app.add_option("--modules", modules);
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   bus::LcmBus bus(url);
   bus::ArenaChannels ch;

@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   CLI::App* sim_cmd = sim.Add(app);
   CLI::App* arena_cmd = arena.Add(app);
   CLI::App* evolve_cmd = evolve.Add(app);
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   if (controller_cmd->parsed()) controller.Run();
   if (sim_cmd->parsed()) sim.Run();
   if (arena_cmd->parsed()) arena.Run();

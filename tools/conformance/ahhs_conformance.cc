@@ -29,7 +29,7 @@ int RunVectors(const std::string& write, const std::string& check) {
   namespace ac = ahhs::conformance;
   if (write.empty() == check.empty()) {
     std::cerr << "ahhs-conformance: vectors needs --write FILE or --check FILE\n";
-    return ahhs::cli::kExitUsage;
+    return ahhs::base::kExitUsage;
   }
   try {
     if (!write.empty()) {
@@ -44,13 +44,13 @@ int RunVectors(const std::string& write, const std::string& check) {
     const std::string error = ac::CheckModelVectors(text.str());
     if (!error.empty()) {
       std::cout << check << ": " << error << "\nNOT conformant\n";
-      return ahhs::cli::kExitFailure;
+      return ahhs::base::kExitFailure;
     }
     std::cout << check << ": every output equals modules/core to the bit\nconformant\n";
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "ahhs-conformance: " << e.what() << '\n';
-    return ahhs::cli::kExitFailure;
+    return ahhs::base::kExitFailure;
   }
 }
 
@@ -92,17 +92,17 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   app.add_option("--seed", seed, "module: seed of the genomes, sensor values and packets played")
       ->capture_default_str();
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   if (role == "vectors") return RunVectors(write_vectors, check_vectors);
   if (app.count("--arena") == 0) {
     std::cerr << "ahhs-conformance: " << role << " needs --arena A (the arena it serves)\n";
-    return ahhs::cli::kExitUsage;
+    return ahhs::base::kExitUsage;
   }
   const bool tracker = role == "tracker";
   if (role != "sim" && app.count(tracker ? "--modules" : "--id") == 0) {
     std::cerr << "ahhs-conformance: " << role << " needs "
               << (tracker ? "--modules N (modules it tracks)" : "--id N (its module)") << '\n';
-    return ahhs::cli::kExitUsage;
+    return ahhs::base::kExitUsage;
   }
   try {
     auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
@@ -130,9 +130,9 @@ int main(int argc, char** argv) {
     std::string text;
     const bool pass = ac::PrintChecklist(checks, &text);
     std::cout << text << (pass ? "conformant\n" : "NOT conformant\n");
-    return pass ? 0 : ahhs::cli::kExitFailure;
+    return pass ? 0 : ahhs::base::kExitFailure;
   } catch (const std::exception& e) {
     std::cerr << "ahhs-conformance: " << e.what() << '\n';
-    return ahhs::cli::kExitFailure;
+    return ahhs::base::kExitFailure;
   }
 }

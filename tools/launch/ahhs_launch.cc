@@ -22,13 +22,13 @@ int main(int argc, char** argv) {
       "ahhs-launch: one episode of a genome in an arena of separate processes (or --fused)"};
   ahhs::launch::LaunchOptions o;
   ahhs::launch::AddLaunchOptions(app, &o);
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   ahhs::sim::Envelope envelope;
   try {
     envelope = o.envelope_options.Resolve();
   } catch (const std::invalid_argument& e) {
     std::cerr << "ahhs-launch: " << e.what() << '\n';
-    return ahhs::cli::kExitUsage;
+    return ahhs::base::kExitUsage;
   }
   ahhs::episode::EpisodeSpec spec;
   std::string error;

@@ -89,10 +89,10 @@ int SpecFromOptions(const CLI::App& app, LaunchOptions* o, const ahhs::sim::Enve
     }
     const std::string fit = ep::CheckGenomeFits(spec->genome, spec->config);
     if (!fit.empty()) throw std::invalid_argument(o->genome_file + ": " + fit);
-    if (const std::string exists = ahhs::cli::RefuseExisting({o->log_file}, o->overwrite);
+    if (const std::string exists = ahhs::base::RefuseExisting({o->log_file}, o->overwrite);
         !exists.empty()) {
       *error = exists;
-      return ahhs::cli::kExitUsage;
+      return ahhs::base::kExitUsage;
     }
     if (o->fused && !o->log_file.empty())
       throw std::invalid_argument(

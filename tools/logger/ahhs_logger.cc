@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   app.add_option("--channel", channel, "channels to record (LCM regular expression)");
   app.add_flag("-f,--force", force, "overwrite FILE if it exists");
   app.add_option("FILE", path, "the log file to write")->required();
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   std::error_code ec;
   if (!force && std::filesystem::exists(path, ec)) {

@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   CLI::App app{"ahhs-replay: one episode of a stored or given genome, with everything recorded"};
   ar::ReplayOptions o;
   ar::AddReplayOptions(app, &o);
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   // Of the replay; of --post-eval. A run's episodes keep the run's envelope unless one is given.
   ahhs::sim::Envelope envelope, post_envelope;
   try {
@@ -32,19 +32,19 @@ int main(int argc, char** argv) {
     post_envelope = o.envelope_options.Resolve("paper");
   } catch (const std::invalid_argument& e) {
     std::cerr << "ahhs-replay: " << e.what() << '\n';
-    return ahhs::cli::kExitUsage;
+    return ahhs::base::kExitUsage;
   }
   if (o.run_dir.empty() == o.genome_file.empty()) {
     std::cerr << "ahhs-replay: give either a run directory or --genome FILE\n";
     return 1;
   }
   const std::string exists =
-      ahhs::cli::RefuseExisting({o.log_file, o.csv_file, o.rules_csv, o.mutants_csv, o.body_csv,
-                                 o.robustness_csv, o.post_eval_json, o.video, o.filmstrip},
-                                o.overwrite);
+      ahhs::base::RefuseExisting({o.log_file, o.csv_file, o.rules_csv, o.mutants_csv, o.body_csv,
+                                  o.robustness_csv, o.post_eval_json, o.video, o.filmstrip},
+                                 o.overwrite);
   if (!exists.empty()) {
     std::cerr << "ahhs-replay: " << exists << '\n';
-    return ahhs::cli::kExitUsage;
+    return ahhs::base::kExitUsage;
   }
   ar::ReplayTarget target;
   try {

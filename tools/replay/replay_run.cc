@@ -145,12 +145,12 @@ int RunReplay(const ReplayOptions& o, const ReplayTarget& t) {
       if (const int code = ahhs::base::RunChildToEnd(args); code != 0) {
         std::cerr << "ahhs-replay: " << flag << " " << out << " failed (ahhs-view exit " << code
                   << ")\n";
-        return ahhs::cli::kExitFailure;
+        return ahhs::base::kExitFailure;
       }
     }
   } catch (const std::exception& e) {
     std::cerr << "ahhs-replay: " << e.what() << '\n';
-    return ahhs::cli::kExitFailure;
+    return ahhs::base::kExitFailure;
   }
   return 0;
   return 0;

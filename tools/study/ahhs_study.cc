@@ -33,8 +33,8 @@ namespace fs = std::filesystem;
 namespace at = ahhs::tools;
 using nlohmann::json;
 
-using ahhs::cli::kExitFailure;
-using ahhs::cli::kExitUsage;
+using ahhs::base::kExitFailure;
+using ahhs::base::kExitUsage;
 
 namespace {
 
@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
   report->add_option("-o,--out", report_dir, "output directory")->required();
   report->add_flag("--overwrite", overwrite, "replace a report in --out");
   report->add_flag("--no-replay", no_replay, "no replay figures and no mutation neighbourhoods");
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   try {
     if (*run || *task) {  // Ctrl-C, and Slurm's cancel, time limit and requeue: stop cleanly

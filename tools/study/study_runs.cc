@@ -24,9 +24,9 @@
 namespace ahhs::tools {
 
 namespace fs = std::filesystem;
-using cli::kExitFailure;
-using cli::kExitInterrupted;
-using cli::kExitUsage;
+using base::kExitFailure;
+using base::kExitInterrupted;
+using base::kExitUsage;
 using nlohmann::json;
 
 namespace {

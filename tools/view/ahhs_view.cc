@@ -36,11 +36,11 @@ int main(int argc, char** argv) {
   o.web_root = AHHS_VIEW_WEB_ROOT;
   o.three_js = AHHS_THREE_JS;
   av::AddViewOptions(app, &o);
-  if (const int code = ahhs::cli::Parse(app, argc, argv); code >= 0) return code;
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   av::Json hormones;
   if (const std::string error = av::CheckViewOptions(app, &o, &hormones); !error.empty()) {
     std::cerr << "ahhs-view: " << error << '\n';
-    return ahhs::cli::kExitUsage;
+    return ahhs::base::kExitUsage;
   }
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
         [&](const std::string& text) { session->OnPageMessage(text); });
   } catch (const std::exception& e) {
     std::cerr << "ahhs-view: " << e.what() << '\n';
-    return ahhs::cli::kExitFailure;
+    return ahhs::base::kExitFailure;
   }
 
   if (capture) {  // headless Chromium films the page (tools/view/ahhs_capture.py)
@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
     }
     args.insert(args.end(), {"--size", o.size});
     const int code = ahhs::base::RunChildToEnd(args, [] { return g_stop.load(); });
-    return g_stop ? ahhs::cli::kExitInterrupted : code;
+    return g_stop ? ahhs::base::kExitInterrupted : code;
   }
 
   std::printf("ahhs-view: %s\nopen %s in a browser (Ctrl-C to stop)\n", session->what().c_str(),

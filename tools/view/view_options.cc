@@ -89,7 +89,7 @@ std::string CheckViewOptions(const CLI::App& app, ViewOptions* o, nlohmann::json
     }
     if (hormone_list->size() != 3) return "--hormones must be three hormone numbers, like 0,1,2";
   }
-  const std::string exists = ahhs::cli::RefuseExisting({o->video, o->filmstrip}, o->overwrite);
+  const std::string exists = ahhs::base::RefuseExisting({o->video, o->filmstrip}, o->overwrite);
   return exists;
 }
 

@@ -99,7 +99,7 @@ int ViewSession::Serve(WebServer& server, const std::atomic<bool>& stop) {
         }
       } catch (const std::exception& e) {
         std::cerr << "ahhs-view: " << e.what() << '\n';
-        return ahhs::cli::kExitFailure;
+        return ahhs::base::kExitFailure;
       }
       for (int i = 0; i < static_cast<int>(o_.poll * 10) && !stop; ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(100));

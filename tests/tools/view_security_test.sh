@@ -52,7 +52,7 @@ kill "$view"; wait "$view" 2>/dev/null
 
 # A web root of the user's own, holding what civetweb's document_root would serve or run.
 mkdir web
-cp "$AHHS_SOURCE_DIR"/tools/view/web/{index.html,view.js,view.css} web/
+cp "$AHHS_SOURCE_DIR"/tools/view/web/{index.html,*.js,view.css} web/
 echo 'secret' > web/.hidden
 printf '#!/bin/sh\necho Content-Type: text/plain; echo; echo ran\n' > web/test.cgi
 chmod +x web/test.cgi

@@ -21,6 +21,9 @@ struct Served {
 constexpr Served kServed[] = {
     {"/", "index.html", "text/html; charset=utf-8"},
     {"/index.html", "index.html", "text/html; charset=utf-8"},
+    {"/view_scene.js", "view_scene.js", "application/javascript"},
+    {"/view_frames.js", "view_frames.js", "application/javascript"},
+    {"/view_panel.js", "view_panel.js", "application/javascript"},
     {"/view.js", "view.js", "application/javascript"},
     {"/view.css", "view.css", "text/css"},
     {"/three.min.js", nullptr, "application/javascript"},

@@ -40,7 +40,7 @@ class WebServer {
   struct Options {
     std::string bind = "127.0.0.1";
     int port = 8080;                       // 0: any free port
-    std::string web_root;                  // index.html, view.js, view.css
+    std::string web_root;                  // index.html, view.css, view*.js
     std::string three_js;                  // path of three.min.js
     bool announce = true;                  // print a line on stdout when a page connects or leaves
     std::vector<std::string> allow_hosts;  // names besides the loopback ones (--allow-host)

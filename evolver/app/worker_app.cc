@@ -75,10 +75,17 @@ void AddWorkerOptions(CLI::App& app, WorkerOptions* o) {
   app.add_option(
       "--external", o->external,
       "roles of the process arena that others play (hardware, other languages): sim, fitness, "
-      "module:N[,M...] or modules (docs/hardware.md); needs --arena-name and --arena-url");
-  app.add_option(
-      "--arena-name", o->arena_name,
-      "channel prefix of the process arena (default W<pid>; the external roles must use it)");
+      "module:N[,M...] or modules (docs/hardware.md); needs --arena and --arena-url");
+  auto* arena = app.add_option(
+      "--arena", o->arena_name,
+      "channel prefix of the process arena, as --arena of every other tool (default W<pid>; the "
+      "external roles must use it)");
+  // The old name, for one release: it says what replaced it.
+  app.add_option("--arena-name", o->arena_name, "deprecated: use --arena")
+      ->excludes(arena)
+      ->each([](const std::string&) {
+        std::cerr << "ahhs-worker: --arena-name is deprecated and will go; use --arena\n";
+      });
   app.add_option("--external-timeout", o->external_timeout_s,
                  "seconds an episode waits for the external roles to answer")
       ->check(CLI::Range(1, 86400))
@@ -98,8 +105,8 @@ std::string CheckWorkerOptions(const CLI::App& app, WorkerOptions* o) {
     return "--realtime needs --arena-kind processes";
   if (app.count("--external") > 0) {
     if (o->arena != "processes") return "--external needs --arena-kind processes";
-    if (app.count("--arena-name") == 0 || app.count("--arena-url") == 0)
-      return "--external needs --arena-name NAME and --arena-url URL: the external roles must "
+    if (app.count("--arena") + app.count("--arena-name") == 0 || app.count("--arena-url") == 0)
+      return "--external needs --arena NAME and --arena-url URL: the external roles must "
              "know the arena";
     if (o->slots != 1) return "--external serves one organism: --slots must be 1";
     try {

@@ -83,15 +83,18 @@ expect_usage "modules are 0 to 2" "${launch[@]}" --arena X --external module:3
 expect_usage "unknown role 'motor'" "${launch[@]}" --arena X --external motor
 expect_usage "not --fused" "$bin/ahhs-launch" --genome $tmp/g.json --fused --arena X --external sim
 expect_usage "needs --arena-kind processes" "$bin/ahhs-worker" --any-run --external module:1
-expect_usage "needs --arena-name NAME and --arena-url URL" "$bin/ahhs-worker" --any-run --arena-kind processes --external module:1
-expect_usage "--slots must be 1" "$bin/ahhs-worker" --any-run --arena-kind processes --arena-name A --arena-url "$url" --slots 2 --external module:1
+expect_usage "needs --arena NAME and --arena-url URL" "$bin/ahhs-worker" --any-run --arena-kind processes --external module:1
+expect_usage "--slots must be 1" "$bin/ahhs-worker" --any-run --arena-kind processes --arena A --arena-url "$url" --slots 2 --external module:1
+# The old option name works for one release and says what replaced it.
+expect_usage "arena-name is deprecated and will go; use --arena" "$bin/ahhs-worker" --any-run --arena-kind processes --arena-name A --arena-url "$url" --slots 2 --external module:1
+grep -q -- "--slots must be 1" $tmp/bad.out || fail "--arena-name is not --arena: $(cat $tmp/bad.out)"
 echo "usage errors name the problem"
 
 echo "== 5. ahhs-worker --external: evolution with an external module"
 evolve=("$bin/ahhs-evolve" --scenario gait --modules 3 --variant ahhs2 --hormones 5 --rules 10 --population 4 --generations 2 --duration 2 --seed 9)
 "${evolve[@]}" --out $tmp/direct --workers 1 --lcm-url "${url/7743/7744}" >$tmp/direct.out 2>&1 || { cat $tmp/direct.out; fail "direct evolution"; }
 $(module 1 EVO) >$tmp/evo-module.out 2>&1 &
-"$bin/ahhs-worker" --any-run --lcm-url "${url/7743/7745}" --arena-kind processes --arena-name EVO --arena-url "$url" \
+"$bin/ahhs-worker" --any-run --lcm-url "${url/7743/7745}" --arena-kind processes --arena EVO --arena-url "$url" \
   --external module:1 --external-timeout 20 >$tmp/worker.out 2>&1 &
 "${evolve[@]}" --out $tmp/external --workers 0 --worker-wait 20 --lcm-url "${url/7743/7745}" >$tmp/external.out 2>&1 ||
   { cat $tmp/external.out $tmp/worker.out; fail "evolution with an external module"; }
@@ -150,7 +153,7 @@ for m in 0 1 2; do  # each board: firmware and controller (docs/hardware.md, wor
 done
 "$bin/ahhs-example-tracker" --arena ROBOT --modules 3 --lcm-url "$url" >/dev/null 2>&1 &
 "$bin/ahhs-sim" --physics none --no-confirm --arena ROBOT --lcm-url "$url" >$tmp/robot-server.out 2>&1 &
-"$bin/ahhs-worker" --any-run --lcm-url "${url/7743/7746}" --arena-kind processes --arena-name ROBOT --arena-url "$url" \
+"$bin/ahhs-worker" --any-run --lcm-url "${url/7743/7746}" --arena-kind processes --arena ROBOT --arena-url "$url" \
   --external sim,modules --realtime >$tmp/robot-worker.out 2>&1 &
 "$bin/ahhs-evolve" --scenario gait --modules 3 --variant ahhs2 --hormones 5 --rules 10 --population 3 --generations 1 \
   --duration 1 --seed 9 --out $tmp/robot --workers 0 --worker-wait 20 --lcm-url "${url/7743/7746}" >$tmp/robot.out 2>&1 ||

@@ -102,26 +102,7 @@ int main(int argc, char** argv) {
 
   ev::Progress progress(first, config.ga.generations);
   std::printf("run directory: %s\n", dir.c_str());
-  std::string robust;
-  if (config.ga.trials > 1 || !config.scenario.envelope.none())
-    robust =
-        ", " + std::to_string(config.ga.trials) + " trial" +
-        (config.ga.trials > 1 ? std::string("s (") + ev::AggregateName(config.ga.aggregate) + ")"
-                              : std::string()) +
-        ", envelope " + ahhs::sim::EnvelopeName(config.scenario.envelope);
-  std::printf(
-      "%s %s, %s %d hormones x %d rules, population %d, "
-      "generations %d%s, seed %llu%s\n",
-      ahhs::sim::ScenarioName(config.scenario.kind),
-      config.scenario.kind == ahhs::sim::ScenarioKind::kGait
-          ? (std::string(ahhs::sim::JointsName(config.scenario.joints)) + " docking, " +
-             std::to_string(config.scenario.num_modules) + " modules")
-                .c_str()
-          : "cart and pole",
-      ahhs::modules::VariantName(config.variant), config.hormones, config.rules,
-      config.ga.population, config.ga.generations, robust.c_str(),
-      static_cast<unsigned long long>(config.seed),
-      first > 0 ? (", resuming at generation " + std::to_string(first)).c_str() : "");
+  std::printf("%s\n", ev::DescribeRun(config, first).c_str());
   std::printf("workers: %d local (%s arena)%s; more: %s/ahhs-worker --lcm-url '%s' --run %s\n",
               static_cast<int>(local.size()), options.arena.c_str(),
               options.workers == 0 ? ", waiting for external ones" : "",

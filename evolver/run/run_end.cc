@@ -14,6 +14,26 @@
 
 namespace ahhs::evolver {
 
+std::string DescribeRun(const EvolveConfig& config, int first) {
+  std::string robust;
+  if (config.ga.trials > 1 || !config.scenario.envelope.none())
+    robust = ", " + std::to_string(config.ga.trials) + " trial" +
+             (config.ga.trials > 1 ? std::string("s (") + AggregateName(config.ga.aggregate) + ")"
+                                   : std::string()) +
+             ", envelope " + sim::EnvelopeName(config.scenario.envelope);
+  const std::string body = config.scenario.kind == sim::ScenarioKind::kGait
+                               ? std::string(sim::JointsName(config.scenario.joints)) +
+                                     " docking, " + std::to_string(config.scenario.num_modules) +
+                                     " modules"
+                               : std::string("cart and pole");
+  return std::string(sim::ScenarioName(config.scenario.kind)) + " " + body + ", " +
+         modules::VariantName(config.variant) + " " + std::to_string(config.hormones) +
+         " hormones x " + std::to_string(config.rules) + " rules, population " +
+         std::to_string(config.ga.population) + ", generations " +
+         std::to_string(config.ga.generations) + robust + ", seed " + std::to_string(config.seed) +
+         (first > 0 ? ", resuming at generation " + std::to_string(first) : std::string());
+}
+
 void PrintRunSummary(const RunStore& store, const EvolveConfig& config) {
   const IndividualRecord best = store.Best();
   std::string replay = base::ExecutableDir() + "/ahhs-launch --scenario " +

@@ -76,6 +76,9 @@ int main(int argc, char** argv) {
       return "?";
     }
   };
+  // Evaluations left: generations, or the validation of a finished run.
+  const bool to_evaluate =
+      first < config.ga.generations || (config.validation > 0 && store->LoadValidation().empty());
   if (first >= config.ga.generations) {
     std::cout << "the run in " << dir << " is already complete (" << config.ga.generations
               << " generations)\n";
@@ -92,7 +95,7 @@ int main(int argc, char** argv) {
   ahhs::base::ChildProcesses local;
   int restarts = 0;
   const std::string worker_bin = ahhs::base::ExecutableDir() + "/ahhs-worker";
-  for (int k = 0; k < options.workers && first < config.ga.generations; ++k)
+  for (int k = 0; k < options.workers && to_evaluate; ++k)
     local.Start(
         "local worker " + std::to_string(k),
         {worker_bin, "--quiet", "--lcm-url", options.url, "--arena-kind", options.arena, "--run",
@@ -145,6 +148,7 @@ int main(int argc, char** argv) {
     const bool finished = ev::RunEvolution(*store, config, farm, session, evolution_hooks);
     progress.Clear();
     if (!finished) throw ev::FarmInterrupted();
+    if (ev::ValidateRun(*store, config, farm)) progress.Clear();
     const auto& c = farm.counters();
     if (c.reissued || c.invalid_results || c.results.dropped || c.statuses.dropped)
       std::printf(

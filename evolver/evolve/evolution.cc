@@ -1,8 +1,11 @@
 #include "evolver/evolve/evolution.h"
 
 #include <chrono>
+#include <set>
 #include <stdexcept>
 #include <string_view>
+
+#include "modules/core/random.h"
 
 namespace ahhs::evolver {
 
@@ -51,6 +54,10 @@ std::string CheckEvolveConfig(const EvolveConfig& c) {
     return "post-eval must be in [0, " + std::to_string(kMaxPostEval) + "] episodes";
   e = sim::CheckEnvelope(c.post_eval_envelope);
   if (!e.empty()) return "post-eval envelope: " + e;
+  if (c.validation < 0 || c.validation > kMaxValidation)
+    return "validation must be in [0, " + std::to_string(kMaxValidation) + "] episodes";
+  if (c.validation_candidates < 1 || c.validation_candidates > kMaxValidation)
+    return "validation-candidates must be in [1, " + std::to_string(kMaxValidation) + "]";
   if (c.hormones < 1 || c.hormones > modules::Ranges::kMaxHormones)
     return "hormones must be in [1, " + std::to_string(modules::Ranges::kMaxHormones) + "]";
   if (c.rules < 1 || c.rules > modules::Ranges::kMaxRules)
@@ -73,6 +80,8 @@ json ConfigToJson(const EvolveConfig& c) {
   if (c.post_eval > 0)
     doc["post_eval"] = {{"episodes", c.post_eval},
                         {"envelope", EnvelopeToJson(c.post_eval_envelope)}};
+  if (c.validation > 0)
+    doc["validation"] = {{"episodes", c.validation}, {"candidates", c.validation_candidates}};
   return doc;
 }
 
@@ -96,6 +105,10 @@ EvolveConfig ConfigFromJson(const json& doc) {
       const json& post = doc.at("post_eval");
       c.post_eval = post.at("episodes").get<int>();
       c.post_eval_envelope = EnvelopeFromJson(post.at("envelope"));
+    }
+    if (doc.contains("validation")) {
+      c.validation = doc.at("validation").at("episodes").get<int>();
+      c.validation_candidates = doc.at("validation").at("candidates").get<int>();
     }
   } catch (const json::exception& e) {
     throw std::invalid_argument(std::string("run config: ") + e.what());
@@ -162,6 +175,71 @@ bool RunEvolution(RunStore& store, const EvolveConfig& config, FitnessEvaluator&
     store.CommitGeneration(record, records);
     hooks.on_generation(record);
   }
+  return true;
+}
+
+std::uint64_t ValidationSeed(std::uint64_t run_seed, int episode) {
+  return modules::DeriveSeed(run_seed, {kValidationStream, static_cast<std::uint64_t>(episode)});
+}
+
+std::vector<IndividualRecord> ValidationCandidates(const RunStore& store, int count) {
+  std::vector<IndividualRecord> out = store.BestDistinct(count);
+  std::set<std::string> seen;
+  for (const auto& r : out) seen.insert(modules::GenomeHashText(r.genome));
+  std::vector<IndividualRecord> last = store.LoadGeneration(store.LastGeneration());
+  std::vector<double> fitness;
+  for (const auto& r : last) fitness.push_back(r.evaluation.fitness);
+  int added = 0;
+  for (int i : RankByFitness(fitness)) {
+    if (added == count) break;
+    auto& r = last[static_cast<std::size_t>(i)];
+    if (!seen.insert(modules::GenomeHashText(r.genome)).second) continue;
+    out.push_back(std::move(r));
+    ++added;
+  }
+  return out;
+}
+
+bool ValidateRun(RunStore& store, const EvolveConfig& config, FitnessEvaluator& evaluator) {
+  if (config.validation <= 0 || store.LastGeneration() + 1 < config.ga.generations ||
+      !store.LoadValidation().empty())
+    return false;
+  const std::vector<IndividualRecord> candidates =
+      ValidationCandidates(store, config.validation_candidates);
+  // Validation jobs are numbered as if they were further generations (generation G, G + 1,
+  // ...), so that every job id the farm derives from them is one no training job had.
+  const int per_generation = config.ga.population * config.ga.trials;
+  std::vector<EvaluationJob> jobs;
+  for (std::size_t c = 0; c < candidates.size(); ++c)
+    for (int k = 0; k < config.validation; ++k) {
+      const int n = static_cast<int>(c) * config.validation + k;
+      EvaluationJob j;
+      j.generation = config.ga.generations + n / per_generation;
+      j.index = (n % per_generation) / config.ga.trials;
+      j.trial = n % config.ga.trials;
+      j.genome = &candidates[c].genome;
+      j.seed = ValidationSeed(config.seed, k);
+      jobs.push_back(j);
+    }
+  const std::vector<Evaluation> results = evaluator.Evaluate(jobs);
+  if (results.size() != jobs.size())
+    throw std::runtime_error("the evaluator returned " + std::to_string(results.size()) +
+                             " results for " + std::to_string(jobs.size()) + " validation jobs");
+  std::vector<ValidationRecord> records;
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    ValidationRecord v;
+    v.candidate = static_cast<int>(c);
+    v.generation = candidates[c].generation;
+    v.index = candidates[c].index;
+    for (int k = 0; k < config.validation; ++k) {
+      const std::size_t j =
+          c * static_cast<std::size_t>(config.validation) + static_cast<std::size_t>(k);
+      v.seeds.push_back(jobs[j].seed);
+      v.fitness.push_back(results[j].fitness);
+    }
+    records.push_back(std::move(v));
+  }
+  store.CommitValidation(records);
   return true;
 }
 

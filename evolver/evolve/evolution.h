@@ -16,6 +16,7 @@
 namespace ahhs::evolver {
 
 inline constexpr int kMaxPostEval = 10000;
+inline constexpr int kMaxValidation = 1000;
 
 struct EvolveConfig {
   sim::ScenarioConfig scenario;
@@ -28,6 +29,11 @@ struct EvolveConfig {
   // episodes (0: none) and their envelope.
   int post_eval = 0;
   sim::Envelope post_eval_envelope;
+  // Validation (docs/evolution.md, "Validation"): when the run ends, its best is chosen among
+  // candidates (its `validation_candidates` best distinct genomes and its last generation's)
+  // by their median on `validation` episodes of the training envelope (0: the highest fitness).
+  int validation = 0;
+  int validation_candidates = 10;
 
   // The genome shape: sensors and actuators come from the scenario.
   modules::Shape shape() const;
@@ -53,5 +59,20 @@ struct EvolutionHooks {
 // not committed.
 bool RunEvolution(RunStore& store, const EvolveConfig& config, FitnessEvaluator& evaluator,
                   int session, const EvolutionHooks& hooks = {});
+
+// Seed stream of the validation episodes: DeriveSeed(run_seed, {kValidationStream, k}), apart
+// from the training seeds (kEvalStream) and from the held-out ones (episode/arena/post_eval.h).
+inline constexpr std::uint64_t kValidationStream = 4;
+std::uint64_t ValidationSeed(std::uint64_t run_seed, int episode);
+
+// The candidates of a finished run's validation: its `count` best distinct genomes by fitness,
+// then its last generation's best distinct genomes not among them (up to `count` more).
+std::vector<IndividualRecord> ValidationCandidates(const RunStore& store, int count);
+
+// Chooses a finished run's best by validation when its config asks for one and the store has
+// none yet: evaluates every candidate on ValidationSeed(0 .. validation - 1) under the training
+// envelope (one batch of jobs) and commits the result (RunStore::CommitValidation). Returns false
+// when there was nothing to do. Exceptions of the evaluator pass through; nothing is stored then.
+bool ValidateRun(RunStore& store, const EvolveConfig& config, FitnessEvaluator& evaluator);
 
 }  // namespace ahhs::evolver

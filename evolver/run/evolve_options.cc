@@ -50,6 +50,17 @@ void AddEvolveOptions(CLI::App& app, EvolveOptions* o) {
                  "min and the share that succeeds, also in RUN/post-eval.json")
       ->check(CLI::Range(0, kMaxPostEval))
       ->default_str("0; 50 without --config and --scenario");
+  app.add_option("--validation", o->validation,
+                 "when the run ends, choose its best by the median of N validation episodes "
+                 "among its --validation-candidates best genomes and its last generation's "
+                 "(0: the highest training fitness)")
+      ->check(CLI::Range(0, kMaxValidation))
+      ->default_str("0; 20 without --config and --scenario");
+  app.add_option("--validation-candidates", o->validation_candidates,
+                 "how many of the run's best distinct genomes, and of its last generation's, "
+                 "the validation compares")
+      ->check(CLI::Range(1, kMaxValidation))
+      ->capture_default_str();
   app.add_option("--post-eval-envelope", o->post_eval_envelope,
                  "envelope of the held-out episodes (default: the run's, or paper for a run "
                  "without one)")
@@ -88,12 +99,28 @@ void AddEvolveOptions(CLI::App& app, EvolveOptions* o) {
 std::unique_ptr<RunStore> OpenRun(const CLI::App& app, EvolveOptions& o, EvolveConfig* config) {
   std::unique_ptr<RunStore> store;
   if (!o.resume_dir.empty()) {
-    for (const char* name :
-         {"--scenario",         "--joints",         "--modules",       "--duration",
-          "--variant",          "--hormones",       "--rules",         "--population",
-          "--generations",      "--elitism",        "--mutation-rate", "--mutation-max-change",
-          "--mutation-profile", "--crossover-rate", "--seed",          "--overwrite",
-          "--trials",           "--aggregate",      "--post-eval",     "--post-eval-envelope"})
+    for (const char* name : {"--scenario",
+                             "--joints",
+                             "--modules",
+                             "--duration",
+                             "--variant",
+                             "--hormones",
+                             "--rules",
+                             "--population",
+                             "--generations",
+                             "--elitism",
+                             "--mutation-rate",
+                             "--mutation-max-change",
+                             "--mutation-profile",
+                             "--crossover-rate",
+                             "--seed",
+                             "--overwrite",
+                             "--trials",
+                             "--aggregate",
+                             "--post-eval",
+                             "--post-eval-envelope",
+                             "--validation",
+                             "--validation-candidates"})
       if (app.count(name))
         throw std::invalid_argument(std::string(name) +
                                     " cannot be given with --resume: a resumed run keeps "
@@ -127,6 +154,7 @@ std::unique_ptr<RunStore> OpenRun(const CLI::App& app, EvolveOptions& o, EvolveC
     if (main_job) {
       if (app.count("--trials") == 0) o.trials = kMainJob.trials;
       if (app.count("--post-eval") == 0) o.post_eval = kMainJob.post_eval;
+      if (app.count("--validation") == 0) o.validation = kMainJob.validation;
     }
     config->scenario = o.task.Config();
     config->scenario.envelope = o.envelope.Resolve(main_job ? kMainJob.envelope : "none");
@@ -147,6 +175,8 @@ std::unique_ptr<RunStore> OpenRun(const CLI::App& app, EvolveOptions& o, EvolveC
                                      ? sim::EnvelopePreset(o.post_eval_envelope)
                                  : config->scenario.envelope.none() ? sim::EnvelopePreset("paper")
                                                                     : config->scenario.envelope;
+    config->validation = o.validation;
+    config->validation_candidates = o.validation_candidates;
     config->seed = o.seed;
     if (o.task.duration < 0) throw std::invalid_argument("--duration must not be negative");
     const std::string error = CheckEvolveConfig(*config);

@@ -23,8 +23,9 @@ struct MainJobSettings {
   int trials;
   const char* envelope;
   int post_eval;
+  int validation;
 };
-inline constexpr MainJobSettings kMainJob{3, "paper", 50};
+inline constexpr MainJobSettings kMainJob{3, "paper", 50, 20};
 
 // ahhs-evolve's command line.
 struct EvolveOptions {
@@ -32,7 +33,7 @@ struct EvolveOptions {
   std::string variant = "ahhs2", out_dir, resume_dir, arena = "direct", url = bus::kDefaultLcmUrl,
               mutation_profile = "paper";
   int hormones = 5, rules = 30, population = 20, generations = 200, elitism = 1, workers = -1,
-      trials = 1, post_eval = 0;
+      trials = 1, post_eval = 0, validation = 0, validation_candidates = 10;
   std::string aggregate = "mean", post_eval_envelope;
   sim::EnvelopeOptions envelope;
   double mutation_rate = 0.15, mutation_max_change = 0.1, crossover_rate = 0.05;

@@ -41,8 +41,11 @@ void Progress::Evaluated(int generation, std::size_t done, std::size_t total) {
       static_cast<int>(width * static_cast<double>(done) / static_cast<double>(total));
   std::string bar(static_cast<std::size_t>(filled), '#');
   bar.resize(width, '.');
-  std::printf("\r\033[K generation %d/%d [%s] %zu/%zu  ETA %s%s", generation, generations_ - 1,
-              bar.c_str(), done, total, FormatDuration(eta).c_str(), last_.c_str());
+  if (generation >= generations_)  // the finished run's validation
+    std::printf("\r\033[K validation [%s] %zu/%zu%s", bar.c_str(), done, total, last_.c_str());
+  else
+    std::printf("\r\033[K generation %d/%d [%s] %zu/%zu  ETA %s%s", generation, generations_ - 1,
+                bar.c_str(), done, total, FormatDuration(eta).c_str(), last_.c_str());
   std::fflush(stdout);
   drawn_ = true;
 }

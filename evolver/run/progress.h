@@ -16,7 +16,8 @@ std::string FormatDuration(double seconds);
 class Progress {
  public:
   Progress(int first_generation, int generations);
-  // `done` of `total` evaluations of `generation` are back (redraws the bar at most 10 times a s).
+  // `done` of `total` evaluations of `generation` are back (redraws the bar at most 10 times a s);
+  // a generation past the run's last is its validation.
   void Evaluated(int generation, std::size_t done, std::size_t total);
   // A generation is stored: its line, with the time it took and the ETA of the run.
   void Generation(const GenerationRecord& r);

@@ -20,7 +20,10 @@ std::string DescribeRun(const EvolveConfig& config, int first) {
     robust = ", " + std::to_string(config.ga.trials) + " trial" +
              (config.ga.trials > 1 ? std::string("s (") + AggregateName(config.ga.aggregate) + ")"
                                    : std::string()) +
-             ", envelope " + sim::EnvelopeName(config.scenario.envelope);
+             ", envelope " + sim::EnvelopeName(config.scenario.envelope) +
+             (config.validation > 0
+                  ? ", best chosen on " + std::to_string(config.validation) + " validation episodes"
+                  : std::string());
   const std::string body = config.scenario.kind == sim::ScenarioKind::kGait
                                ? std::string(sim::JointsName(config.scenario.joints)) +
                                      " docking, " + std::to_string(config.scenario.num_modules) +
@@ -58,6 +61,16 @@ void PrintRunSummary(const RunStore& store, const EvolveConfig& config) {
     std::printf("replay the best genome's first trial (fitness %.17g): %s\n",
                 best.trials.front().evaluation.fitness, replay.c_str());
   }
+  const std::vector<ValidationRecord> validation = store.LoadValidation();
+  for (const auto& v : validation)
+    if (v.generation == best.generation && v.index == best.index) {
+      const IndividualRecord top = store.TrainingBest();
+      std::printf(
+          "chosen by validation among %zu candidates: median %.6g on %zu episodes (the highest "
+          "training fitness, %.6g, is generation %d, individual %d)\n",
+          validation.size(), v.Median(), v.fitness.size(), top.evaluation.fitness, top.generation,
+          top.index);
+    }
 }
 
 void PostEvaluateBest(const RunStore& store, const EvolveConfig& config) {

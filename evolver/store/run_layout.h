@@ -21,6 +21,11 @@ inline constexpr const char* kTrialsTable =
     "  trial INTEGER NOT NULL, seed INTEGER NOT NULL, fitness REAL NOT NULL,"
     "  cost REAL NOT NULL, worker TEXT NOT NULL, attempt INTEGER NOT NULL,"
     "  wall_time REAL NOT NULL, message TEXT NOT NULL, PRIMARY KEY(generation, idx, trial));";
+// The validation that chose the run's best (any version; a run without one has no such table).
+inline constexpr const char* kValidationTable =
+    "CREATE TABLE IF NOT EXISTS validation(candidate INTEGER NOT NULL, generation INTEGER NOT NULL,"
+    "  idx INTEGER NOT NULL, episode INTEGER NOT NULL, seed INTEGER NOT NULL,"
+    "  fitness REAL NOT NULL, PRIMARY KEY(candidate, episode));";
 
 // SQLite integers are signed 64-bit; seeds are unsigned: store the same bits.
 inline std::int64_t ToSql(std::uint64_t v) { return static_cast<std::int64_t>(v); }

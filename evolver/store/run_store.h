@@ -3,6 +3,8 @@
 //                         generation (genome, fitness, evaluation seed, worker, timings), every
 //                         trial of an individual evaluated several times (seed, fitness, worker,
 //                         timings), the statistics of every generation, the sessions.
+//                         The validation that chose the run's best among its leaders (when the
+//                         config asks for one): every candidate's validation episodes.
 //                         One transaction per generation: a killed run loses at most the
 //                         generation in progress and resumes from the last committed one.
 //                         Each generation carries a SHA-256 digest of its rows chained to the
@@ -10,7 +12,7 @@
 //                         a store that was changed after the fact is caught (VerifyChain).
 //   generations.csv       generation, best, mean, median, worst, wall time (s)
 //   best/gen-NNNN.json    the best genome of every generation (docs/genome.md)
-//   best.json             the best genome of the run so far
+//   best.json             the best genome of the run so far (after a validation: the chosen one)
 // The CSV and JSON files are exports of the database, rewritten atomically after each commit
 // (and on resume), so they never disagree with it for long and are never half-written.
 #pragma once
@@ -53,6 +55,18 @@ struct IndividualRecord {
   std::uint64_t eval_seed = 0;      // the first trial's
   Evaluation evaluation;            // with several trials: their aggregate (ga.h, StepGeneration)
   std::vector<TrialRecord> trials;  // every trial when there are several; empty with one
+};
+
+// One candidate of the validation that chooses a run's best (docs/evolution.md, "Validation"):
+// an individual of the run evaluated again on the run's validation episodes.
+struct ValidationRecord {
+  int candidate = 0;  // its place among the candidates, 0 first (ties go to the lower)
+  int generation = 0;
+  int index = 0;
+  std::vector<std::uint64_t> seeds;  // one per validation episode, the same for every candidate
+  std::vector<double> fitness;       // one per validation episode
+  // The median of `fitness` (what chooses the best).
+  double Median() const;
 };
 
 struct GenerationRecord {
@@ -139,8 +153,21 @@ class RunStore {
   // not the whole, right genome file (short, damaged, another individual).
   void Export(bool check_existing = false) const;
 
-  // The best individual of the run so far (highest fitness; earliest on ties).
+  // The run's best: after a validation the candidate with the highest validation median (the
+  // lowest candidate number on ties), otherwise TrainingBest().
   IndividualRecord Best() const;
+  // The individual with the highest fitness (earliest on ties).
+  IndividualRecord TrainingBest() const;
+  // The `count` best distinct genomes of the run, by fitness (each where it scored highest,
+  // earliest on ties), best first.
+  std::vector<IndividualRecord> BestDistinct(int count) const;
+
+  // Stores a validation (replacing any earlier one) in one transaction, then rewrites the
+  // exports: best.json is the chosen candidate from then on. Every candidate must be a stored
+  // individual with as many fitnesses as seeds, all finite.
+  void CommitValidation(const std::vector<ValidationRecord>& candidates);
+  // The stored validation, by candidate; empty when the run has none.
+  std::vector<ValidationRecord> LoadValidation() const;
 
  private:
   RunStore(std::string dir, sqlite3* db, std::optional<base::FileLock> lock);
@@ -152,6 +179,7 @@ class RunStore {
   bool StoresInFull(int generation) const;
   bool Chained() const { return format_version_ >= 3; }
   bool HasTrials() const { return format_version_ >= 4; }
+  bool HasTable(const char* name) const;
   // The digest of `generation`'s rows after `previous` (the run table's digest for generation 0).
   std::string GenerationDigest(int generation, const std::string& previous) const;
   std::string RunTableDigest() const;

@@ -204,14 +204,6 @@ int RunStore::VerifyChain() const {
   return static_cast<int>(generations.size());
 }
 
-IndividualRecord RunStore::Best() const {
-  Statement best(db_,
-                 "SELECT generation, idx FROM individuals ORDER BY fitness DESC, generation, idx "
-                 "LIMIT 1");
-  if (!best.Step()) throw RunStoreError(dir_ + ": the run has no evaluated individual yet");
-  return LoadIndividual(static_cast<int>(best.Int(0)), static_cast<int>(best.Int(1)));
-}
-
 void RunStore::Export(bool check_existing) const {
   const fs::path root(dir_);
   std::ostringstream csv;
@@ -252,7 +244,16 @@ void RunStore::Export(bool check_existing) const {
   }
   if (!generations.empty()) {
     const IndividualRecord best = Best();
-    modules::SaveGenomeFile((root / "best.json").string(), best.genome, meta(best));
+    json m = meta(best);
+    const auto validation = LoadValidation();
+    for (const auto& v : validation)
+      if (v.generation == best.generation && v.index == best.index) {
+        m["validation"] = {{"episodes", v.fitness.size()},
+                           {"candidates", validation.size()},
+                           {"median", v.Median()}};
+        break;
+      }
+    modules::SaveGenomeFile((root / "best.json").string(), best.genome, m);
   }
 }
 

@@ -112,9 +112,15 @@ same_run $tmp/whole $tmp/paused "paused 12 s with --worker-wait 2"
 
 echo "== 2b. robust evolution: 3 trials under the envelope, killed and resumed, external workers"
 robust="--scenario gait --hormones 3 --rules 6 --population 6 --generations 6 --duration 2 --seed 12
-  --lcm-url $url --trials 3 --aggregate median --envelope paper"
+  --lcm-url $url --trials 3 --aggregate median --envelope paper --validation 4 --validation-candidates 2"
+# The validation that chose the best: every candidate's episodes, as stored.
+validation() { sqlite3 $1/run.sqlite "SELECT * FROM validation ORDER BY candidate, episode"; }
 $E $robust --out $tmp/r-whole --workers 2 --post-eval 3 >$tmp/out 2>&1 || { cat $tmp/out; fail "robust run"; }
 grep -q "3 trials (median), envelope paper" $tmp/out || fail "robust run header: $(head -3 $tmp/out)"
+# Its best is chosen among 2 + up to 2 candidates on 4 validation episodes, through the workers.
+grep -q "^chosen by validation among [2-4] candidates: median .* on 4 episodes" $tmp/out ||
+  fail "no validation: $(tail -4 $tmp/out)"
+[[ $(validation $tmp/r-whole | wc -l) -ge 8 ]] || fail "validation rows: $(validation $tmp/r-whole)"
 # The run ends with its best post-evaluated on held-out episodes, also in post-eval.json.
 grep -q "^post-evaluation on 3 held-out episodes (envelope paper): median " $tmp/out ||
   fail "no post-evaluation: $(tail -3 $tmp/out)"
@@ -156,6 +162,7 @@ done
 kill -9 $pid; wait $pid 2>/dev/null
 $E --resume $tmp/r-killed --workers 1 >$tmp/resume.out 2>&1 || { cat $tmp/resume.out; fail "robust resume"; }
 same_run $tmp/r-whole $tmp/r-killed "robust run killed and resumed"
+[[ "$(validation $tmp/r-killed)" == "$(validation $tmp/r-whole)" ]] || fail "the resumed run's validation differs"
 $E --resume $tmp/r-killed --envelope none >$tmp/out 2>&1 && fail "--envelope accepted with --resume"
 grep -q "cannot be given with --resume" $tmp/out || fail "robust resume option message: $(cat $tmp/out)"
 "$bin/ahhs-worker" --lcm-url "$url" --any-run --id lan-a >/dev/null 2>&1 &
@@ -165,6 +172,7 @@ wb=$!
 $E $robust --out $tmp/r-external --workers 0 >$tmp/out 2>&1 || { cat $tmp/out; fail "robust run, external workers"; }
 kill $wa $wb; wait $wa $wb 2>/dev/null
 same_run $tmp/r-whole $tmp/r-external "robust run on external workers only"
+[[ "$(validation $tmp/r-external)" == "$(validation $tmp/r-whole)" ]] || fail "the validation on external workers differs"
 [[ $(sqlite3 $tmp/r-external/run.sqlite "SELECT COUNT(DISTINCT worker) FROM trials") == 2 ]] ||
   fail "the trials did not spread over both workers"
 

@@ -41,10 +41,11 @@ import json, sys
 c = json.load(open(sys.argv[1]))
 assert c["envelope"]["friction"] == 0.05 and c["envelope"]["sensor-noise"] == 0.023, c["envelope"]
 assert c["post_eval"]["episodes"] == 50 and c["post_eval"]["envelope"] == c["envelope"], c["post_eval"]
+assert c["validation"] == {"episodes": 20, "candidates": 10}, c.get("validation")
 PY
 done
 # A paper preset's configuration has none of the robust keys.
-"$E" --config "$src/configs/gait-damped-ahhs2-30.toml" --show-config | grep -Eq '"(trials|envelope|post_eval)"' &&
+"$E" --config "$src/configs/gait-damped-ahhs2-30.toml" --show-config | grep -Eq '"(trials|envelope|post_eval|validation)"' &&
   fail "a paper preset has robust keys"
 # Single envelope keys are quoted TOML keys ("envelope.friction" = 0.1), on top of the preset.
 printf 'envelope = "paper"\n"envelope.friction" = 0.1\ntrials = 2\n' >/tmp/preset.$$.json
@@ -58,7 +59,7 @@ printf 'envelope = "paper"\n"envelope.friction" = 0.1\ntrials = 2\n' >/tmp/prese
 "$E" --show-config >/tmp/preset.$$.json || fail "no --config"
 "$E" --config "$src/configs/gait-damped-ahhs2-30-robust.toml" --show-config |
   cmp -s - /tmp/preset.$$.json || fail "the main job is not configs/gait-damped-ahhs2-30-robust.toml"
-"$E" --scenario gait --show-config | grep -Eq '"(trials|envelope|post_eval)"' &&
+"$E" --scenario gait --show-config | grep -Eq '"(trials|envelope|post_eval|validation)"' &&
   fail "--scenario without --config is not the paper's defaults"
 "$E" --trials 2 --envelope none --post-eval 0 --show-config | grep -Eq '"(envelope|post_eval)"|"trials": 3' &&
   fail "options do not override the main job"

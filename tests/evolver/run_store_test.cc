@@ -10,8 +10,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
+#include "episode/arena/post_eval.h"
 #include "evolver/evolve/evolution.h"
 #include "modules/core/genome_json.h"
 
@@ -588,4 +590,103 @@ TEST_CASE("a run config keeps trials and the envelope, and a paper config has ne
   bad = robust;
   bad["trials"] = 0;
   CHECK_THROWS_WITH(evolver::ConfigFromJson(bad), Catch::Contains("trials"));
+}
+
+namespace {
+
+// Fitness = the genome's quality (as HashFitness) plus episode noise far larger than the
+// differences in quality: the highest training score is luck, a median over common seeds is not.
+class NoisyFitness : public evolver::FitnessEvaluator {
+ public:
+  static double Quality(const modules::Genome& g) {
+    double s = 0;
+    for (const auto& h : g.hormones) s += h.alpha - 0.3 * h.mu + 0.1 * h.diffusion;
+    return s;
+  }
+  std::vector<evolver::Evaluation> Evaluate(
+      const std::vector<evolver::EvaluationJob>& jobs) override {
+    if (fail) throw std::runtime_error("evaluator lost");
+    std::vector<evolver::Evaluation> out;
+    for (const auto& j : jobs) {
+      evolver::Evaluation e;
+      e.fitness = Quality(*j.genome) + static_cast<double>(j.seed % 1000) * 1e-2;
+      out.push_back(e);
+      seeds.push_back(j.seed);
+    }
+    return out;
+  }
+  bool fail = false;
+  std::vector<std::uint64_t> seeds;
+};
+
+}  // namespace
+
+TEST_CASE("validation chooses the best by its median on seeds no training episode had") {
+  TempDir tmp;
+  auto config = SmallConfig();
+  config.ga.trials = 2;
+  config.validation = 9;
+  config.validation_candidates = 4;
+  const std::string dir = tmp.path + "/run";
+  auto store =
+      RunStore::Create(dir, "v", 123, evolver::ConfigToJson(config), "test-physics", false);
+  NoisyFitness f;
+  REQUIRE(evolver::RunEvolution(*store, config, f, 1));
+  const std::set<std::uint64_t> training(f.seeds.begin(), f.seeds.end());
+  CHECK(store->LoadValidation().empty());
+  CHECK(store->Best().generation == store->TrainingBest().generation);
+
+  // Killed (the evaluator lost) during the validation: nothing is stored, and it runs again.
+  f.fail = true;
+  CHECK_THROWS(evolver::ValidateRun(*store, config, f));
+  CHECK(store->LoadValidation().empty());
+  f.fail = false;
+  f.seeds.clear();
+  REQUIRE(evolver::ValidateRun(*store, config, f));
+  CHECK_FALSE(evolver::ValidateRun(*store, config, f));  // done once, kept
+
+  const auto candidates = evolver::ValidationCandidates(*store, 4);
+  const auto validation = store->LoadValidation();
+  REQUIRE(validation.size() == candidates.size());
+  REQUIRE(validation.size() > 4);  // the run's best and the last generation's
+  std::set<std::string> distinct;
+  const evolver::ValidationRecord* chosen = nullptr;
+  double best_quality = -1e300;
+  for (std::size_t c = 0; c < validation.size(); ++c) {
+    const auto& v = validation[c];
+    CHECK(v.candidate == static_cast<int>(c));
+    CHECK(v.generation == candidates[c].generation);
+    CHECK(v.index == candidates[c].index);
+    distinct.insert(modules::GenomeHashText(candidates[c].genome));
+    REQUIRE(v.seeds.size() == 9);
+    for (int k = 0; k < 9; ++k) {
+      const std::uint64_t seed = v.seeds[static_cast<std::size_t>(k)];
+      CHECK(seed == evolver::ValidationSeed(123, k));
+      CHECK(training.count(seed) == 0);
+      CHECK(seed != episode::HeldOutSeed(static_cast<std::uint64_t>(k)));
+    }
+    const double q = NoisyFitness::Quality(candidates[c].genome);
+    if (q > best_quality) best_quality = q, chosen = &v;
+  }
+  CHECK(distinct.size() == validation.size());
+  // Common seeds: every candidate's median is its quality plus the same noise median, so the
+  // validation chooses the candidate of highest quality, whatever its training luck.
+  const auto best = store->Best();
+  CHECK(best.generation == chosen->generation);
+  CHECK(best.index == chosen->index);
+  const auto file = nlohmann::json::parse(ReadFile(dir + "/best.json"));
+  CHECK(file.at("meta").at("generation") == best.generation);
+  CHECK(file.at("meta").at("individual") == best.index);
+  CHECK(file.at("meta").at("validation").at("episodes") == 9);
+  CHECK(file.at("meta").at("validation").at("median") == chosen->Median());
+
+  // The config keeps the validation, and a config without one has no key.
+  const auto doc = evolver::ConfigToJson(config);
+  CHECK(doc.at("validation").at("episodes") == 9);
+  CHECK(doc.at("validation").at("candidates") == 4);
+  CHECK(evolver::ConfigToJson(evolver::ConfigFromJson(doc)) == doc);
+  CHECK_FALSE(evolver::ConfigToJson(SmallConfig()).contains("validation"));
+  auto bad = doc;
+  bad["validation"]["episodes"] = -1;
+  CHECK_THROWS_WITH(evolver::ConfigFromJson(bad), Catch::Contains("validation"));
 }

@@ -236,6 +236,14 @@ void StudyDir::WriteSummary(const StudyRun& run) const {
         {"final_best", records.back().stats.best},
         {"wall_time_s", wall_time},
         {"physics", store->physics().empty() ? PhysicsOf(store->config()) : store->physics()}};
+    // How the best was chosen, when a validation chose it (ahhs-evolve --validation).
+    for (const auto& v : store->LoadValidation())
+      if (v.generation == best.generation && v.index == best.index)
+        summary["validation"] = {
+            {"episodes", v.fitness.size()},
+            {"candidates", store->LoadValidation().size()},
+            {"median", v.Median()},
+            {"training_best_fitness", store->TrainingBest().evaluation.fitness}};
     // The run's held-out post-evaluation (ahhs-evolve --post-eval), when it has one.
     const fs::path post_eval = fs::path(run_dir) / "post-eval.json";
     std::error_code exists_ec;

@@ -10,6 +10,7 @@
 #include "modules/app/genome_commands.h"
 #include "modules/app/sensor_csv.h"
 #include "modules/core/genome_json.h"
+#include "modules/core/genome_vector.h"
 #include "modules/core/organism.h"
 #include "modules/core/random.h"
 #include "modules/core/variation.h"
@@ -112,6 +113,13 @@ int main(int argc, char** argv) {
   run->add_option("--ticks", ticks, "ticks to run (default: up to the CSV's last tick)")
       ->check(CLI::PositiveNumber);
 
+  auto* to_vector = app.add_subcommand(
+      "to-vector", "Print a genome as a flat vector of reals with bounds (JSON, docs/genome.md)");
+  to_vector->add_option("FILE", file, "genome file")->required();
+  auto* from_vector =
+      app.add_subcommand("from-vector", "Print the genome a vector file gives (values clipped)");
+  from_vector->add_option("FILE", file, "vector file (JSON; - for stdin)")->required();
+
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   try {
@@ -153,6 +161,15 @@ int main(int argc, char** argv) {
                   g.num_sensors, g.num_actuators, am::GenomeHashText(g).c_str());
     } else if (show->parsed()) {
       am::Show(am::LoadGenomeFile(file));
+    } else if (to_vector->parsed()) {
+      const am::Genome g = am::LoadGenomeFile(file);
+      std::cout << am::VectorToJson(g.shape(), am::GenomeToVector(g)).dump(2) << '\n';
+    } else if (from_vector->parsed()) {
+      const json doc = am::ReadVectorFile(file);
+      am::Shape vector_shape;
+      const std::vector<double> x = am::VectorFromJson(doc, &vector_shape);
+      PrintGenomes({am::GenomeFromVector(vector_shape, x)},
+                   json{{"created_by", "ahhs-genome from-vector"}});
     } else if (run->parsed()) {
       return am::RunOnSensorCsv(am::LoadGenomeFile(file), compartments, csv, ticks);
     }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
 
 #include "modules/app/sensor_csv.h"
 #include "modules/core/genome_json.h"
@@ -110,6 +111,21 @@ int RunOnSensorCsv(const am::Genome& genome, int compartments, const std::string
     }
   }
   return 0;
+}
+
+nlohmann::json ReadVectorFile(const std::string& path) {
+  std::ifstream file;
+  if (path != "-") {
+    file.open(path);
+    if (!file) throw std::runtime_error(path + ": cannot open");
+  }
+  std::istream& in = path == "-" ? std::cin : file;
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error((path == "-" ? std::string("standard input") : path) + ": not JSON (" +
+                             e.what() + ")");
+  }
 }
 
 }  // namespace ahhs::modules

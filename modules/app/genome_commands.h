@@ -2,6 +2,7 @@
 // sensor readings (modules/app/sensor_csv.h).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "modules/core/genome.h"
@@ -15,5 +16,9 @@ void Show(const Genome& g);
 // ticks (<= 0: as many as the file has); prints the actuators per tick. Returns the exit code.
 int RunOnSensorCsv(const Genome& genome, int compartments, const std::string& csv_path,
                    long ticks_opt);
+
+// The JSON document in `path` ("-": standard input). Throws std::runtime_error naming the file
+// and what is wrong (missing, unreadable, not JSON).
+nlohmann::json ReadVectorFile(const std::string& path);
 
 }  // namespace ahhs::modules

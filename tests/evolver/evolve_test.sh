@@ -66,7 +66,7 @@ $E $gait --joints fixed --variant ahhs1 --out $tmp/gf-fused --workers 1 --arena-
 same_run $tmp/gf-direct $tmp/gf-fused "gait fixed ahhs1, fused arena"
 
 echo "== 2. kill -9 and resume; Ctrl-C"
-long="--scenario gait --hormones 3 --rules 6 --population 8 --generations 30 --duration 4 --seed 13 --lcm-url $url"
+long="--scenario gait --hormones 3 --rules 6 --population 8 --generations 16 --duration 3 --seed 13 --lcm-url $url"
 $E $long --out $tmp/whole --workers 2 >/dev/null 2>&1 || fail "uninterrupted run"
 for at in 2 9; do
   $E $long --out $tmp/killed$at --workers 2 >$tmp/killed.out 2>&1 &
@@ -77,7 +77,7 @@ for at in 2 9; do
   done
   kill -9 $pid; wait $pid 2>/dev/null
   stored=$(($(wc -l <$tmp/killed$at/generations.csv) - 1))
-  [[ $stored -lt 30 ]] || fail "the run ended before the kill"
+  [[ $stored -lt 16 ]] || fail "the run ended before the kill"
   sleep 0.3
   pgrep -g "$pg" -f "$bin/ahhs-worker" >/dev/null && fail "local workers outlived a killed evolver"
   $E --resume $tmp/killed$at --workers 2 >$tmp/resume.out 2>&1 || { cat $tmp/resume.out; fail "resume"; }
@@ -139,6 +139,11 @@ first=$(sed -n "s|^replay the best genome's first trial (fitness \([^)]*\)).*|\1
 "$bin/ahhs-replay" $tmp/r-whole >$tmp/replay.out || fail "ahhs-replay of a robust run"
 grep -q "trial 0 of 3 (the median of all 3 is" $tmp/replay.out && grep -q "reproduced exactly" $tmp/replay.out ||
   fail "ahhs-replay of a robust run: $(cat $tmp/replay.out)"
+# Its best.json alone replays under the run's envelope (meta.config) without --envelope.
+"$bin/ahhs-replay" --genome $tmp/r-whole/best.json --scenario gait --duration 2 >$tmp/replay.out ||
+  fail "ahhs-replay of a robust best.json"
+grep -q "under the envelope of its run, paper" $tmp/replay.out && grep -q "reproduced exactly" $tmp/replay.out ||
+  fail "a robust best.json replays without its envelope: $(cat $tmp/replay.out)"
 $E --resume $tmp/r-whole >$tmp/out 2>&1 && grep -q "^post-evaluation on 3 held-out" $tmp/out &&
   ! grep -q "post-evaluating" $tmp/out || fail "a finished run's post-evaluation was not kept: $(cat $tmp/out)"
 [[ $(sqlite3 $tmp/r-whole/run.sqlite "SELECT COUNT(*) FROM trials") == $((6 * 6 * 3)) ]] ||

@@ -13,7 +13,7 @@ expect_error() {  # expect_error "text in stderr" command...
   [[ ! -s "$tmp/out" ]] || fail "'$*' failed but still printed to stdout"
 }
 
-for sub in random mutate crossover validate show run; do
+for sub in random mutate crossover validate show run to-vector from-vector; do
   "$tool" "$sub" --help >/dev/null || fail "$sub --help"
 done
 
@@ -33,6 +33,21 @@ cmp -s "$tmp/a.json" "$tmp/m.json" && fail "mutant equals parent"
 "$tool" mutate "$tmp/a.json" --seed 3 --count 5 | grep -c '"format": "ahhs-genome"' | grep -qx 5 || fail "mutate --count 5"
 "$tool" crossover "$tmp/a.json" "$tmp/b.json" --seed 4 | grep -c '"format": "ahhs-genome"' | grep -qx 2 || fail crossover
 expect_error "differ in variant or size" "$tool" crossover "$tmp/a.json" "$tmp/c.json" --seed 1
+
+# Genome vectors: the round trip gives the same genome (hash); a vector from stdin; bad vectors.
+for g in a c; do
+  "$tool" to-vector "$tmp/$g.json" >"$tmp/$g.vec" || fail "to-vector $g"
+  "$tool" from-vector "$tmp/$g.vec" >"$tmp/$g.back" || fail "from-vector $g"
+  [[ "$("$tool" validate "$tmp/$g.back" | sed 's/.*hash //')" == "$("$tool" validate "$tmp/$g.json" | sed 's/.*hash //')" ]] ||
+    fail "vector round trip of $g changed the genome"
+done
+grep -q '"rules\[29\].actuator"' "$tmp/a.vec" || fail "to-vector names"
+"$tool" from-vector - <"$tmp/c.vec" | cmp -s - "$tmp/c.back" || fail "from-vector from stdin"
+printf "tick,x\n" >"$tmp/text.vec"
+expect_error "not JSON" "$tool" from-vector "$tmp/text.vec"
+echo '{"format": "ahhs-genome-vector", "version": 1, "shape": {"variant": "ahhs2", "hormones": 1, "rules": 0, "sensors": 1, "actuators": 1}, "x": [0, null, 0]}' >"$tmp/n.vec"
+expect_error "genome vector" "$tool" from-vector "$tmp/n.vec"
+expect_error "cannot open" "$tool" from-vector "$tmp/none.vec"
 
 # Open-loop run: 2 compartments, sample-and-hold, an empty cell is an absent slot.
 printf 'tick,compartment,s0,s1,s2,s3\n0,0,0.1,0.2,,0.4\n0,1,0.5,,0.7,0.8\n5,0,1,1,1,1\n' >"$tmp/s.csv"

@@ -78,6 +78,20 @@ ReplayTarget ResolveTarget(const CLI::App& app, const ReplayOptions& o,
     if (!fit.empty()) throw std::invalid_argument(o.genome_file + ": " + fit);
     t.spec.seed = o.seed;
     t.what = o.genome_file;
+    // A genome file of a run made with an envelope (meta.config, as best.json keeps it) replays
+    // under that envelope, as the run directory would, unless envelope options are given.
+    if (!o.envelope_options.given() && meta.is_object() && meta.contains("config") &&
+        meta["config"].is_object() && meta["config"].contains("envelope")) {
+      try {
+        envelope = ev::ConfigFromJson(meta["config"]).scenario.envelope;
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(o.genome_file + ": meta.config: " + e.what());
+      }
+      if (!envelope.none()) {
+        t.post_envelope = envelope;
+        t.what += " (under the envelope of its run, " + ahhs::sim::EnvelopeName(envelope) + ")";
+      }
+    }
     const auto stored_seed = am::StoredEvalSeed(meta);
     if (!app.count("--seed") && stored_seed) {
       t.spec.seed = *stored_seed;

@@ -49,6 +49,14 @@ _ahhs_cleanup() {
   rm -rf "$tmp"
 }
 
+# figures_in_ci_tier_only: true in the sanitizer tier (the asan test preset sets AHHS_TEST_TIER),
+# where a test skips what only drives Python figures and tables over files its C++ part made: that
+# part is checked in the ci tier; the sanitizers look for memory errors in the C++ (docs/development.md).
+figures_in_ci_tier_only() {
+  [[ "${AHHS_TEST_TIER:-}" == asan ]] || return 1
+  echo "  (sanitizer tier: $1 is checked in the ci tier)"
+}
+
 # dump_run RUN_DIR: every individual of a run, a line each: genome, seeds, elite, fitness and cost
 # to the last bit; what must not depend on how the run was run (layout, faults, resumes).
 dump_run() {

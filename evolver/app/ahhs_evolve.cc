@@ -20,6 +20,7 @@
 #include "base/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
+#include "evolver/app/local_workers.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/farm/arena_evaluator.h"
 #include "evolver/farm/farm_evaluator.h"
@@ -94,14 +95,8 @@ int main(int argc, char** argv) {
     options.workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   ahhs::base::ChildProcesses local;
   int restarts = 0;
-  const std::string worker_bin = ahhs::base::ExecutableDir() + "/ahhs-worker";
-  for (int k = 0; k < options.workers && to_evaluate; ++k)
-    local.Start(
-        "local worker " + std::to_string(k),
-        {worker_bin, "--quiet", "--lcm-url", options.url, "--arena-kind", options.arena, "--run",
-         store->run_id(), "--id",
-         ahhs::base::HostName() + ":" + std::to_string(getpid()) + "/w" + std::to_string(k)},
-        true);
+  if (to_evaluate)
+    ev::StartLocalWorkers(&local, options.workers, options.url, options.arena, store->run_id());
 
   ev::Progress progress(first, config.ga.generations);
   std::printf("run directory: %s\n", dir.c_str());

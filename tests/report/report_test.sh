@@ -38,6 +38,11 @@ grep -q "600 trace (module, tick) pairs; 0 incomplete" $tmp/count.out || fail "t
 "$bin/ahhs-replay" $tmp/gait --physics-step 0.0025 >$tmp/out 2>&1 || fail "--physics-step 0.0025: $(cat $tmp/out)"
 grep -Eq "reproduced exactly|in the changed physics \(--physics-step, --friction-scale, --envelope, --physics\) the replay differs by" $tmp/out || fail "$(cat $tmp/out)"
 "$bin/ahhs-replay" $tmp/gait --physics-step 1 >$tmp/out 2>&1; [[ $? == 2 ]] || fail "--physics-step 1 accepted"
+# --mutants (what ahhs-report neighbourhood runs): the C++ part, in every tier.
+"$bin/ahhs-replay" $tmp/a2-1 --mutants 3 --mutants-csv $tmp/mutants.csv >/dev/null 2>&1 || fail "replay --mutants"
+[[ $(wc -l <$tmp/mutants.csv) == 5 ]] || fail "mutants.csv: $(cat $tmp/mutants.csv)"
+
+if ! figures_in_ci_tier_only "ahhs-report (figures, neighbourhood, steps, the random genomes' table)"; then
 echo "== ahhs-report"
 "$bin/ahhs-report" $tmp/a2-{1,2,3} $tmp/a1-{1,2,3} $tmp/gait -o $tmp/report >$tmp/report.out 2>&1 ||
   { cat $tmp/report.out; fail "ahhs-report"; }
@@ -103,6 +108,8 @@ echo "== the random pendulum genomes of docs/results.md (1 per setting)"
 # A header, a rule and seven settings, each with 1 genome scored.
 [[ $(grep -c "^| .* | [01] of 1 | " $tmp/random.md) == 7 && $(wc -l <$tmp/random.md) == 9 ]] ||
   fail "random genomes table: $(cat $tmp/random.md)"
+
+fi
 
 echo "== bad input"
 mkdir $tmp/notrun

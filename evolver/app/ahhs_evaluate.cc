@@ -1,0 +1,131 @@
+// ahhs-evaluate: the ask/tell evaluation service (docs/protocol.md, "Evaluation service"). Reads
+// requests as JSON lines on stdin, answers each with one JSON line on stdout, and evaluates
+// through the same farm as ahhs-evolve: --workers local workers, and any worker on the bus.
+// Ends at the end of its input (exit 0) or on Ctrl-C (exit 130).
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <thread>
+
+#include "base/children.h"
+#include "base/cli.h"
+#include "bus/fault_bus.h"
+#include "bus/lcm_bus.h"
+#include "evolver/app/local_workers.h"
+#include "evolver/farm/farm_evaluator.h"
+#include "evolver/serve/eval_service.h"
+#include "modules/core/random.h"
+#include "sim/node/envelope_options.h"
+#include "sim/node/scenario_options.h"
+
+namespace ev = ahhs::evolver;
+
+namespace {
+std::atomic<int> g_interrupts{0};
+void OnSignal(int) {
+  if (++g_interrupts >= 3) std::_Exit(130);
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "ahhs-evaluate: evaluates batches of genomes for any optimizer (JSON lines on "
+      "stdin and stdout, docs/protocol.md)"};
+  ahhs::sim::ScenarioOptions task;
+  task.Add(app, "", "episode length in simulated seconds (default: the task's)");
+  ahhs::sim::EnvelopeOptions envelope;
+  envelope.Add(app, "envelope of noise of every episode: none, paper or wide (docs/scenarios.md)");
+  std::string variant = "ahhs2", aggregate = "mean", url = ahhs::bus::kDefaultLcmUrl,
+              arena = "direct";
+  ev::ServiceSettings settings;
+  int workers = -1;
+  double job_deadline = 300, worker_wait = 60;
+  app.add_option("--variant", variant, "the shape of vector genomes: ahhs1 or ahhs2")
+      ->check(CLI::IsMember({"ahhs1", "ahhs2"}))
+      ->capture_default_str();
+  app.add_option("--hormones", settings.shape.hormones, "hormones of vector genomes")
+      ->check(CLI::Range(1, ahhs::modules::Ranges::kMaxHormones))
+      ->default_val(5);
+  app.add_option("--rules", settings.shape.rules, "rules of vector genomes")
+      ->check(CLI::Range(0, ahhs::modules::Ranges::kMaxRules))
+      ->default_val(30);
+  app.add_option("--trials", settings.trials, "episodes per genome, each with its own seed")
+      ->check(CLI::Range(1, ev::kMaxTrials))
+      ->capture_default_str();
+  app.add_option("--aggregate", aggregate, "a genome's fitness from its trials: mean, median, min")
+      ->check(CLI::IsMember({"mean", "median", "min"}))
+      ->capture_default_str();
+  app.add_option("--seed", settings.seed, "seed of the requests that bring none")
+      ->check(ahhs::modules::SeedTextError)
+      ->capture_default_str();
+  app.add_option("--workers", workers, "local workers (default: one per core; 0: only external)")
+      ->check(CLI::Range(0, 256));
+  app.add_option("--arena-kind", arena, "how local workers evaluate: direct, fused or processes")
+      ->check(CLI::IsMember({"direct", "fused", "processes"}))
+      ->capture_default_str();
+  app.add_option("--lcm-url", url, "LCM URL of the farm (ttl=1 to use LAN workers)")
+      ->capture_default_str();
+  app.add_option("--job-deadline", job_deadline, "seconds before an evaluation is re-issued")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--worker-wait", worker_wait, "seconds without any worker before a request fails")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
+
+  ev::FarmOptions farm_options;
+  try {
+    settings.task = task.Config();
+    settings.task.envelope = envelope.Resolve();
+    const std::string error = ahhs::sim::CheckConfig(settings.task);
+    if (!error.empty()) throw std::invalid_argument(error);
+    auto probe = ahhs::sim::MakeScenario(settings.task);
+    settings.shape.variant =
+        variant == "ahhs1" ? ahhs::modules::Variant::kAhhs1 : ahhs::modules::Variant::kAhhs2;
+    settings.shape.sensors = probe->num_sensors();
+    settings.shape.actuators = probe->num_actuators();
+    settings.aggregate = ev::ParseAggregate(aggregate);
+    farm_options.run = ahhs::base::HostName() + "-" + std::to_string(getpid()) + "-evaluate";
+    farm_options.config = settings.task;
+    farm_options.population = ev::kMaxServiceBatch;
+    farm_options.trials = settings.trials;
+    farm_options.lease.job_deadline =
+        std::chrono::milliseconds(static_cast<std::int64_t>(job_deadline * 1000));
+    farm_options.no_worker_timeout =
+        std::chrono::milliseconds(static_cast<std::int64_t>(worker_wait * 1000));
+  } catch (const std::exception& e) {
+    std::cerr << "ahhs-evaluate: " << e.what() << '\n';
+    return ahhs::base::kExitUsage;
+  }
+
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  if (workers < 0) workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  ahhs::base::ChildProcesses local;
+  int exit_code = ahhs::base::kExitOk;
+  try {
+    ev::StartLocalWorkers(&local, workers, url, arena, farm_options.run);
+    auto bus = ahhs::bus::OpenBusWithFaultInjection(url);
+    ev::FarmEvaluator::Hooks hooks;
+    hooks.interrupted = [] { return g_interrupts > 0; };
+    hooks.report = [](const std::string& text) { std::cerr << "ahhs-evaluate: " << text << '\n'; };
+    ev::FarmEvaluator farm(bus.get(), farm_options, hooks);
+    ev::EvalService service(settings, farm);
+    std::cout << service.Hello().dump() << std::endl;
+    std::string line;
+    while (g_interrupts == 0 && std::getline(std::cin, line)) {
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      std::cout << service.Handle(line).dump() << std::endl;
+    }
+    if (g_interrupts > 0) exit_code = ahhs::base::kExitInterrupted;
+  } catch (const std::exception& e) {
+    std::cerr << "ahhs-evaluate: " << e.what() << '\n';
+    exit_code = ahhs::base::kExitFailure;
+  }
+  local.StopAll(std::chrono::seconds(5));
+  return exit_code;
+}

@@ -1,0 +1,120 @@
+// The evaluation service's protocol (evolver/serve/eval_service.h) over an analytic evaluator:
+// golden answers, trial seeds, aggregates, and one error answer per bad request.
+#include "evolver/serve/eval_service.h"
+
+#include <catch2/catch.hpp>
+
+#include "modules/core/genome_json.h"
+#include "modules/core/genome_vector.h"
+#include "modules/core/random.h"
+#include "modules/core/variation.h"
+
+using namespace ahhs;
+using nlohmann::json;
+
+namespace {
+
+// Fitness = the seed's last three digits / 1000: the answer shows which seed each trial had.
+class SeedFitness : public evolver::FitnessEvaluator {
+ public:
+  std::vector<evolver::Evaluation> Evaluate(
+      const std::vector<evolver::EvaluationJob>& jobs) override {
+    std::vector<evolver::Evaluation> out;
+    for (const auto& j : jobs) {
+      evolver::Evaluation e;
+      e.fitness = static_cast<double>(j.seed % 1000) / 1000;
+      out.push_back(e);
+    }
+    ++batches;
+    return out;
+  }
+  int batches = 0;
+};
+
+evolver::ServiceSettings Settings() {
+  evolver::ServiceSettings s;
+  s.task = sim::MakeScenarioConfig(sim::ScenarioKind::kGait, sim::Joints::kFixed, 5, 4);
+  s.shape = {modules::Variant::kAhhs2, 2, 3, 4, 1};
+  s.trials = 3;
+  s.aggregate = evolver::Aggregate::kMedian;
+  s.seed = 9;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("an ask is answered with every trial's seed and fitness and their aggregate") {
+  SeedFitness f;
+  evolver::EvalService service(Settings(), f);
+  const json hello = service.Hello();
+  CHECK(hello.at("v") == 1);
+  CHECK(hello.at("vector_size") == 3 * 2 + 13 * 3);
+  CHECK(hello.at("aggregate") == "median");
+  modules::Rng rng(4);
+  const modules::Genome g = modules::RandomGenome({modules::Variant::kAhhs2, 2, 3, 4, 1}, rng);
+  const json ask = {
+      {"v", 1},
+      {"id", {{"batch", 1}}},
+      {"seed", 42},
+      {"genomes", {modules::GenomeToJson(g), {{"vector", modules::GenomeToVector(g)}}}}};
+  const json answer = service.Handle(ask.dump());
+  REQUIRE_FALSE(answer.contains("error"));
+  CHECK(answer.at("id") == json{{"batch", 1}});
+  CHECK(answer.at("seed") == 42);
+  REQUIRE(answer.at("results").size() == 2);
+  for (std::uint64_t i = 0; i < 2; ++i) {
+    const json& r = answer.at("results")[i];
+    CHECK(r.at("genome_hash") == modules::GenomeHashText(g));  // the vector is the same genome
+    std::vector<double> scores;
+    for (std::uint64_t t = 0; t < 3; ++t) {
+      const std::uint64_t seed = modules::DeriveSeed(42, {i, t});
+      CHECK(r.at("trials")[t].at("seed") == seed);
+      CHECK(r.at("trials")[t].at("fitness") == static_cast<double>(seed % 1000) / 1000);
+      scores.push_back(static_cast<double>(seed % 1000) / 1000);
+    }
+    CHECK(r.at("fitness") == evolver::AggregateFitness(evolver::Aggregate::kMedian, scores));
+  }
+  CHECK(f.batches == 1);  // one request, one batch: its trials spread over the workers
+  // Without a seed: DeriveSeed(service seed, {request number}).
+  const json auto_seed = service.Handle(R"({"v": 1, "genomes": [{"vector": )" +
+                                        json(modules::GenomeToVector(g)).dump() + "}]}");
+  CHECK(auto_seed.at("seed") == modules::DeriveSeed(9, {1}));
+  CHECK(auto_seed.at("id") == nullptr);
+}
+
+TEST_CASE("a bad request gets one error line naming what is wrong, and nothing is evaluated") {
+  SeedFitness f;
+  evolver::EvalService service(Settings(), f);
+  const auto error = [&](const std::string& line) {
+    const json a = service.Handle(line);
+    REQUIRE(a.contains("error"));
+    CHECK(a.at("v") == 1);
+    return a.at("error").get<std::string>();
+  };
+  CHECK(error("{") == "not a JSON line");
+  CHECK(error("[1]") == "a request is a JSON object");
+  CHECK_THAT(error(R"({"id": 3, "genomes": []})"), Catch::Contains("protocol version"));
+  CHECK(service.Handle(R"({"v": 1, "id": 3, "genomes": []})").at("id") == 3);
+  CHECK_THAT(error(R"({"v": 1, "genomes": []})"), Catch::Contains("1 to 100000 per request"));
+  CHECK_THAT(error(R"({"v": 1, "genomes": [{"vector": [1, 2]}]})"),
+             Catch::Contains("genomes[0]: a vector of 2 values for a genome of 45"));
+  CHECK_THAT(error(R"({"v": 1, "genomes": [{"vector": ["a"]}]})"),
+             Catch::Contains("genomes[0]: vector: an array of numbers"));
+  CHECK_THAT(error(R"({"v": 1, "genomes": [{"format": "ahhs-genome"}]})"),
+             Catch::StartsWith("genomes[0]: "));
+  CHECK_THAT(error(R"({"v": 1, "seed": -5, "genomes": [{"vector": []}]})"),
+             Catch::Contains("genomes[0]"));
+  const std::string vector = json(std::vector<double>(45, 0.5)).dump();
+  CHECK_THAT(error(R"({"v": 1, "seed": -5, "genomes": [{"vector": )" + vector + "}]}"),
+             Catch::Contains("seed"));
+  CHECK_THAT(
+      error(R"({"v": 1, "seed": "18446744073709551616", "genomes": [{"vector": )" + vector + "}]}"),
+      Catch::Contains("seed"));
+  CHECK_THAT(error(R"({"v": 1, "genome": []})"), Catch::Contains("unknown key 'genome'"));
+  // A genome of the pendulum's shape does not fit the gait.
+  modules::Rng rng(1);
+  const json pendulum =
+      modules::GenomeToJson(modules::RandomGenome({modules::Variant::kAhhs2, 2, 3, 10, 2}, rng));
+  CHECK_THAT(error(json{{"v", 1}, {"genomes", {pendulum}}}.dump()), Catch::Contains("genomes[0]"));
+  CHECK(f.batches == 0);
+}

@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# ahhs-evaluate, the ask/tell evaluation service, end to end inside a private network namespace:
+# its hello line; answers whose every trial ahhs-launch reproduces bit for bit (genome documents
+# and vectors, trials under an envelope); one error line per bad request, the service going on;
+# the same request, the same answer; external workers only; the end of input ends it cleanly.
+bin=${1:?usage: evaluate_test.sh BIN_DIR}
+source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
+ahhs_netns "$0" "$@"
+ahhs_scratch 'ahhs-evaluate|ahhs-worker'
+url="udpm://239.255.42.61:7752?ttl=0&recv_buf_size=4194304"
+S="$bin/ahhs-evaluate"
+task="--scenario gait --joints fixed --duration 4"
+"$bin/ahhs-genome" random --variant ahhs2 --hormones 5 --rules 30 --sensors 4 --actuators 1 --seed 3 >$tmp/g.json
+python3 - $tmp/g.json >$tmp/requests <<'PY'
+import json, sys
+g = json.load(open(sys.argv[1]))
+ask = lambda **k: print(json.dumps(dict(v=1, **k)))
+ask(id="doc", seed=42, genomes=[g])
+print("not json")
+print(json.dumps({"v": 2, "id": 7, "genomes": [g]}))
+ask(id="vec", seed="18446744073709551615", genomes=[{"vector": [0.5] * (15 + 13 * 30)}, g])
+ask(id="short", genomes=[{"vector": [0.5] * 3}])
+ask(id="neg", seed=-1, genomes=[g])
+ask(id="key", genomes=[g], trails=3)
+ask(id="doc", seed=42, genomes=[g])
+ask(id="auto1", genomes=[g])
+ask(id="auto2", genomes=[g])
+PY
+echo "== 1. answers, errors, determinism"
+$S $task --trials 2 --envelope paper --workers 2 --lcm-url "$url" <$tmp/requests >$tmp/out 2>$tmp/err ||
+  fail "service: $(cat $tmp/err)"
+pgrep -g "$pg" -f "$bin/ahhs-worker" >/dev/null && fail "local workers outlived the service"
+python3 - $tmp/out >$tmp/launches <<'PY' || fail "answers: $(cat $tmp/out)"
+import json, sys
+lines = [json.loads(l) for l in open(sys.argv[1])]
+hello, answers = lines[0], lines[1:]
+assert hello["v"] == 1 and hello["service"] == "ahhs-evaluate", hello
+assert hello["scenario"] == "gait" and hello["joints"] == "fixed" and hello["trials"] == 2, hello
+assert hello["vector_size"] == 405 and hello["envelope"]["envelope.friction"] == 0.05, hello
+assert len(answers) == 10, answers
+by = {}
+for a in answers:
+    assert a["v"] == 1
+    by.setdefault(a["id"], []).append(a)
+doc = by["doc"][0]
+assert doc["seed"] == 42 and len(doc["results"]) == 1
+r = doc["results"][0]
+assert len(r["trials"]) == 2 and r["fitness"] == (r["trials"][0]["fitness"] + r["trials"][1]["fitness"]) / 2, r
+assert by["doc"][1] == doc, "the same request, another answer"
+assert answers[1]["id"] is None and "not a JSON line" in answers[1]["error"], answers[1]
+assert "protocol version" in by[7][0]["error"]
+assert "genomes[0]: a vector of 3 values for a genome of 405" in by["short"][0]["error"], by["short"]
+assert "seed" in by["neg"][0]["error"] and "unknown key 'trails'" in by["key"][0]["error"]
+vec = by["vec"][0]
+assert vec["seed"] == 18446744073709551615 and len(vec["results"]) == 2
+assert vec["results"][1]["genome_hash"] == doc["results"][0]["genome_hash"]
+a1, a2 = by["auto1"][0], by["auto2"][0]
+assert a1["seed"] != a2["seed"], "requests without a seed got the same one"
+# Every trial, for ahhs-launch to replay: genome, seed, fitness.
+for a, g in ((doc, 0), (vec, 0)):
+    for t in a["results"][g]["trials"]:
+        print(a["id"], t["seed"], repr(t["fitness"]))
+PY
+echo "== 2. every trial is what ahhs-launch gives"
+"$bin/ahhs-genome" from-vector - >$tmp/vec.json <<<"{\"format\": \"ahhs-genome-vector\", \"version\": 1, \"shape\": {\"variant\": \"ahhs2\", \"hormones\": 5, \"rules\": 30, \"sensors\": 4, \"actuators\": 1}, \"x\": $(python3 -c 'print([0.5] * 405)')}"
+while read -r id seed fitness; do
+  genome=$tmp/g.json
+  [[ $id == vec ]] && genome=$tmp/vec.json
+  got=$("$bin/ahhs-launch" $task --envelope paper --genome $genome --seed $seed --fused | sed -n 's/^fitness: //p')
+  python3 -c "import sys; sys.exit(float('$got') != $fitness)" || fail "$id seed $seed: service $fitness, ahhs-launch $got"
+done <$tmp/launches
+echo "  $(wc -l <$tmp/launches) trials reproduced exactly"
+echo "== 3. external workers only, the same answers"
+"$bin/ahhs-worker" --lcm-url "$url" --any-run --id ext >/dev/null 2>&1 &
+w=$!
+head -1 $tmp/requests | $S $task --trials 2 --envelope paper --workers 0 --lcm-url "$url" >$tmp/ext 2>$tmp/err ||
+  fail "external: $(cat $tmp/err)"
+kill $w; wait $w 2>/dev/null
+[[ "$(sed -n 2p $tmp/ext)" == "$(sed -n 2p $tmp/out)" ]] || fail "external workers answer otherwise: $(cat $tmp/ext)"
+echo "== 4. bad options"
+$S --trials 0 </dev/null >$tmp/o 2>&1; [[ $? == 2 ]] || fail "--trials 0: $(cat $tmp/o)"
+$S --scenario walker </dev/null >$tmp/o 2>&1; [[ $? == 2 ]] && grep -q "unknown scenario" $tmp/o || fail "bad scenario: $(cat $tmp/o)"
+echo PASS

@@ -172,13 +172,20 @@ echo "== 6. a filmstrip: 8 frames in one PNG"
   fail "filmstrip size"
 
 echo "== 7. watching an evolution: the newest generation's best, switching as new ones arrive"
+# The viewer and its page come first (the viewer waits for the run's first generation), the run
+# only once the page is connected: a Chromium slow to start cannot miss every switch.
+start_view --run run --poll 0.2
+js 'new Promise(r => { const g0 = ahhs.stats().run_generation; const i = setInterval(() => {
+      const s = ahhs.stats(); if (s.run_generation !== g0) { clearInterval(i); s.first = g0; r(s); } }, 100); })' \
+  --wait 'window.ahhs && ahhs.isReady()' --timeout 120 >probe7.out 2>&1 &
+probe=$!
+for _ in $(seq 1200); do grep -q "a page connected" view.out && break; sleep 0.1; done
+grep -q "a page connected" view.out || fail "no page connected to the run's viewer: $(cat view.out)"
 "$bin/ahhs-evolve" --config "$AHHS_SOURCE_DIR/configs/gait-fixed-ahhs2-20.toml" --population 8 \
   --generations 25 --duration 15 --workers 1 --lcm-url "$url" --out run >evolve.out 2>&1 &
 evolve=$!
-start_view --run run --poll 0.2  # started with the run: it waits for the first generation
-s=$(js 'new Promise(r => { const g0 = ahhs.stats().run_generation; const i = setInterval(() => {
-          const s = ahhs.stats(); if (s.run_generation !== g0) { clearInterval(i); s.first = g0; r(s); } }, 100); })' \
-  --wait 'window.ahhs && ahhs.isReady()' --timeout 120)
+wait $probe
+s=$(cat probe7.out)
 [[ $(field "['mode']" <<<"$s") == run ]] || fail "run mode: $s"
 python3 -c "import json,sys; s=json.loads(sys.argv[1]); assert s['run_generation'] > s['first'], s" "$s" ||
   fail "no switch to a newer best: $s"

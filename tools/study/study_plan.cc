@@ -35,6 +35,8 @@ const std::set<std::string>& EvolveKeys() {
                                           "envelope",
                                           "post-eval",
                                           "post-eval-envelope",
+                                          "validation",
+                                          "validation-candidates",
                                           "envelope.friction",
                                           "envelope.mass",
                                           "envelope.servo-torque",

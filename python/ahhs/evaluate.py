@@ -1,0 +1,111 @@
+"""A client of ahhs-evaluate, the ask/tell evaluation service (docs/protocol.md, "Evaluation
+service"): genomes (documents or vectors) in, every trial's seed and fitness and their aggregate
+out, evaluated by the same farm as ahhs-evolve.
+
+    with Evaluator(["--scenario", "pendulum", "--trials", "3"]) as ev:
+        results = ev.evaluate([genome_doc, [0.5] * ev.vector_size])
+        results[0]["fitness"], results[0]["trials"]
+"""
+import json
+import os
+import shutil
+import subprocess
+
+from .vector import Shape
+
+PROTOCOL_VERSION = 1
+
+
+class EvaluationError(RuntimeError):
+    """A request the service answered with an error line (its message), or a service that ended."""
+
+
+def find_service(binary=None):
+    """The ahhs-evaluate to run: `binary`, $AHHS_BIN/ahhs-evaluate, or the one on PATH."""
+    if binary:
+        return binary
+    if os.environ.get("AHHS_BIN"):
+        return os.path.join(os.environ["AHHS_BIN"], "ahhs-evaluate")
+    found = shutil.which("ahhs-evaluate")
+    if not found:
+        raise FileNotFoundError("ahhs-evaluate not found: pass binary=, set AHHS_BIN or PATH")
+    return found
+
+
+class Evaluator:
+    """One ahhs-evaluate process for the lifetime of the object (a context manager). `options`
+    are its command-line options (task, envelope, trials, workers, LCM URL)."""
+
+    def __init__(self, options=(), binary=None):
+        self._argv = [find_service(binary)] + [str(o) for o in options]
+        self._proc = None
+        self.hello = None
+
+    def __enter__(self):
+        self._proc = subprocess.Popen(self._argv, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                      stderr=subprocess.PIPE, text=True, bufsize=1)
+        line = self._proc.stdout.readline()
+        if not line:
+            self._proc.wait()
+            why = self._proc.stderr.read().strip()
+            for stream in (self._proc.stdin, self._proc.stdout, self._proc.stderr):
+                stream.close()
+            self._proc = None
+            raise EvaluationError("ahhs-evaluate ended before its hello line: " + why)
+        self.hello = json.loads(line)
+        if self.hello.get("v") != PROTOCOL_VERSION:
+            self.close()
+            raise EvaluationError("ahhs-evaluate speaks protocol version %r, this client %d" %
+                                  (self.hello.get("v"), PROTOCOL_VERSION))
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+    @property
+    def shape(self):
+        """The shape of vector genomes."""
+        return Shape.from_json(self.hello["shape"])
+
+    @property
+    def vector_size(self):
+        return self.hello["vector_size"]
+
+    def evaluate(self, genomes, seed=None, request_id=None):
+        """Evaluates a batch: each genome a document (dict) or a vector (sequence of numbers).
+        Returns one result per genome: {"fitness", "genome_hash", "trials": [{"seed", "fitness"}]}.
+        Raises EvaluationError with the service's message for a bad request."""
+        batch = [g if isinstance(g, dict) else {"vector": [float(v) for v in g]} for g in genomes]
+        request = {"v": PROTOCOL_VERSION, "genomes": batch}
+        if seed is not None:
+            request["seed"] = int(seed)
+        if request_id is not None:
+            request["id"] = request_id
+        self._proc.stdin.write(json.dumps(request) + "\n")
+        self._proc.stdin.flush()
+        line = self._proc.stdout.readline()
+        if not line:
+            raise EvaluationError("ahhs-evaluate ended: " + self._proc.stderr.read().strip())
+        answer = json.loads(line)
+        if "error" in answer:
+            raise EvaluationError(answer["error"])
+        self.last_seed = answer["seed"]
+        return answer["results"]
+
+    def close(self):
+        """Ends the service (end of its input) and waits for it."""
+        if self._proc is None:
+            return
+        try:
+            self._proc.stdin.close()
+        except BrokenPipeError:
+            pass
+        try:
+            self._proc.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            self._proc.kill()
+            self._proc.wait()
+        for stream in (self._proc.stdout, self._proc.stderr):
+            stream.close()
+        self._proc = None

@@ -182,7 +182,7 @@ probe=$!
 for _ in $(seq 1200); do grep -q "a page connected" view.out && break; sleep 0.1; done
 grep -q "a page connected" view.out || fail "no page connected to the run's viewer: $(cat view.out)"
 "$bin/ahhs-evolve" --config "$AHHS_SOURCE_DIR/configs/gait-fixed-ahhs2-20.toml" --population 8 \
-  --generations 25 --duration 15 --workers 1 --lcm-url "$url" --out run >evolve.out 2>&1 &
+  --generations 10 --duration 15 --workers 1 --lcm-url "$url" --out run >evolve.out 2>&1 &
 evolve=$!
 wait $probe
 s=$(cat probe7.out)

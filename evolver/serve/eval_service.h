@@ -45,8 +45,6 @@ class EvalService {
   // One request line's answer (a tell or an error; never throws for bad input). Exceptions of
   // the evaluator become an error answer too.
   nlohmann::json Handle(const std::string& line);
-  // The evaluation number the next request without a seed gets its seed from.
-  std::uint64_t requests() const { return requests_; }
 
  private:
   nlohmann::json Ask(const nlohmann::json& request);

@@ -237,11 +237,12 @@ void StudyDir::WriteSummary(const StudyRun& run) const {
         {"wall_time_s", wall_time},
         {"physics", store->physics().empty() ? PhysicsOf(store->config()) : store->physics()}};
     // How the best was chosen, when a validation chose it (ahhs-evolve --validation).
-    for (const auto& v : store->LoadValidation())
+    const std::vector<evolver::ValidationRecord> validation = store->LoadValidation();
+    for (const auto& v : validation)
       if (v.generation == best.generation && v.index == best.index)
         summary["validation"] = {
             {"episodes", v.fitness.size()},
-            {"candidates", store->LoadValidation().size()},
+            {"candidates", validation.size()},
             {"median", v.Median()},
             {"training_best_fitness", store->TrainingBest().evaluation.fitness}};
     // The run's held-out post-evaluation (ahhs-evolve --post-eval), when it has one.

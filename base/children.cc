@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 #include <thread>
 
@@ -75,6 +76,14 @@ std::string ExecutableDir() {
   if (n <= 0) return ".";
   const std::string path(buf, static_cast<std::size_t>(n));
   return path.substr(0, path.rfind('/'));
+}
+
+std::string DataDir() {
+  std::error_code ec;
+  const std::filesystem::path dir =
+      std::filesystem::path(ExecutableDir()) / ".." / "share" / "ahhs";
+  const std::filesystem::path resolved = std::filesystem::weakly_canonical(dir, ec);
+  return (ec ? dir : resolved).string();
 }
 
 int RunChildToEnd(const std::vector<std::string>& argv,

@@ -26,6 +26,11 @@ void StopChildren(std::vector<pid_t>* pids, std::chrono::milliseconds grace);
 // Directory of the running executable (where the others are found: ahhs-sim, ahhs-worker, ...).
 std::string ExecutableDir();
 
+// The tools' shared files (the viewer's page, the report's Python, presets, study plans):
+// ExecutableDir()/../share/ahhs with symbolic links resolved. The same in a build tree (CMake
+// links build/share/ahhs to the sources) and in an installed one, which can therefore move.
+std::string DataDir();
+
 // Runs `argv` as a child (SpawnChild, output on ours) and waits for it: its exit code, or 128 +
 // the signal that killed it. While it runs, `stop_requested` (when given) is asked every 50 ms;
 // once true the child gets SIGTERM. Throws std::runtime_error when fork fails.

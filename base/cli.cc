@@ -81,7 +81,29 @@ std::vector<std::string> NearestOptions(const CLI::App& app, const std::string& 
   return best;
 }
 
+namespace {
+std::string& ProgramName() {
+  static std::string name = "ahhs";
+  return name;
+}
+}  // namespace
+
+const char* Version() { return AHHS_VERSION; }
+
+void SetVersion(CLI::App& app, std::vector<std::string> speaks) {
+  app.set_version_flag("--version", [speaks = std::move(speaks)] {
+    std::string text = ProgramName() + " " + Version();
+    for (const std::string& line : speaks) text += "\n  " + line;
+    return text;
+  });
+}
+
 int Parse(CLI::App& app, int argc, char** argv) {
+  if (argc > 0) {
+    const std::string path = argv[0];
+    ProgramName() = path.substr(path.rfind('/') + 1);
+  }
+  if (app.get_option_no_throw("--version") == nullptr) SetVersion(app, {});
   try {
     app.parse(argc, argv);
     return -1;

@@ -18,8 +18,17 @@ inline constexpr int kExitUsage = 2;
 inline constexpr int kExitInterrupted = 130;
 
 // Parses the command line. Returns -1 when the program should go on; otherwise the exit code
-// (0 after --help, kExitUsage after an error, which has been printed).
+// (0 after --help or --version, kExitUsage after an error, which has been printed). Every
+// program gets a --version (SetVersion's, or one that prints the version alone).
 int Parse(CLI::App& app, int argc, char** argv);
+
+// This build's version, the project's (CMakeLists.txt), e.g. "0.1.0".
+const char* Version();
+
+// Gives `app` a --version that prints "PROGRAM VERSION" and then one line for each thing the
+// program speaks, as its layer words it ("farm protocol 3", "physics: pendulum 2026-12-01,
+// ...": docs/reference.md).
+void SetVersion(CLI::App& app, std::vector<std::string> speaks);
 
 // The option names of `app` closest to `unknown` (edit distance at most 2 or a third of its
 // length), best first: "--population" for "--populaton" or "populaton".

@@ -5,6 +5,7 @@
 #   browser      headless Chromium
 #   soak         long fault schedules (kill -9, loss, stopped processes)
 #   style        formatting and layering
+#   package      the Debian packages made by CPack, used from a fresh prefix
 # and may have descriptive ones: multiprocess (real sockets in a namespace), lan, chaos. The
 # Release pass runs every tier; the sanitizer pass runs unit and integration.
 # Tests that cannot run here (no namespaces, not root) exit 77 and CTest reports them skipped.

@@ -10,6 +10,7 @@
 #include "base/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
+#include "bus/wire_version.h"
 #include "episode/fitness/fitness_node.h"
 
 namespace {
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", timeout,
                  "give up after this many seconds without a final result (0 = never)")
       ->check(CLI::NonNegativeNumber);
+  ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   try {
     auto bus = ahhs::bus::OpenBusWithFaultInjection(url);

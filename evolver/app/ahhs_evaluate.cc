@@ -15,10 +15,14 @@
 #include "base/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
+#include "bus/wire_version.h"
 #include "evolver/app/local_workers.h"
 #include "evolver/farm/farm_evaluator.h"
+#include "evolver/farm/farm_protocol.h"
 #include "evolver/serve/eval_service.h"
+#include "modules/core/genome_vector.h"
 #include "modules/core/random.h"
+#include "sim/core/constants.h"
 #include "sim/node/envelope_options.h"
 #include "sim/node/scenario_options.h"
 
@@ -75,6 +79,9 @@ int main(int argc, char** argv) {
   app.add_option("--worker-wait", worker_wait, "seconds without any worker before a request fails")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine(), ahhs::evolver::FarmVersionLine(),
+                               ahhs::evolver::ServiceVersionLine(), ahhs::sim::PhysicsVersionLine(),
+                               ahhs::modules::GenomeVectorLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   ev::FarmOptions farm_options;

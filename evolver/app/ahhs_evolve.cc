@@ -20,15 +20,19 @@
 #include "base/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
+#include "bus/wire_version.h"
 #include "evolver/app/local_workers.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/farm/arena_evaluator.h"
 #include "evolver/farm/farm_evaluator.h"
+#include "evolver/farm/farm_protocol.h"
 #include "evolver/run/evolve_options.h"
 #include "evolver/run/progress.h"
 #include "evolver/run/run_end.h"
 #include "evolver/store/run_store.h"
+#include "modules/core/genome_json.h"
 #include "modules/core/random.h"
+#include "sim/core/constants.h"
 #include "sim/node/envelope_options.h"
 #include "sim/node/scenario_options.h"
 
@@ -51,6 +55,9 @@ int main(int argc, char** argv) {
   CLI::App app{"ahhs-evolve: evolves hormone controllers (the paper's GA) on evaluation workers"};
   ev::EvolveOptions options;
   ev::AddEvolveOptions(app, &options);
+  ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine(), ahhs::evolver::FarmVersionLine(),
+                               ahhs::evolver::RunStore::FormatVersionLine(),
+                               ahhs::sim::PhysicsVersionLine(), ahhs::modules::GenomeFormatLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   std::string command_line;

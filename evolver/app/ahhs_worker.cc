@@ -12,7 +12,10 @@
 
 #include "base/cli.h"
 #include "bus/lcm_bus.h"
+#include "bus/wire_version.h"
 #include "evolver/app/worker_app.h"
+#include "evolver/farm/farm_protocol.h"
+#include "sim/core/constants.h"
 
 namespace {
 
@@ -26,6 +29,8 @@ int main(int argc, char** argv) {
   ahhs::evolver::WorkerOptions o;
   o.url = o.arena_url = ahhs::bus::kDefaultLcmUrl;
   ahhs::evolver::AddWorkerOptions(app, &o);
+  ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine(), ahhs::evolver::FarmVersionLine(),
+                               ahhs::sim::PhysicsVersionLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   if (const std::string error = ahhs::evolver::CheckWorkerOptions(app, &o); !error.empty()) {
     std::cerr << "ahhs-worker: " << error << '\n';

@@ -16,6 +16,9 @@ namespace ahhs::evolver {
 // Bumped whenever a message of the farm changes meaning. Workers refuse requests of another
 // version; evolvers ignore workers of another version (both say so).
 inline constexpr int kFarmProtocolVersion = 3;  // 3: the envelope of noise in EVAL/REQUEST
+inline std::string FarmVersionLine() {          // for --version
+  return "farm protocol " + std::to_string(kFarmProtocolVersion);
+}
 
 // A run on the wire is "RUN_ID/sSESSION" (ahhs-evolve). A worker that serves one run only names
 // its RUN_ID in every status; a status's run matches a wire run when it is the same or its id.

@@ -26,6 +26,9 @@
 namespace ahhs::evolver {
 
 inline constexpr int kServiceProtocolVersion = 1;
+inline std::string ServiceVersionLine() {  // for --version
+  return "evaluation service protocol " + std::to_string(kServiceProtocolVersion);
+}
 inline constexpr int kMaxServiceBatch = 100000;
 
 struct ServiceSettings {

@@ -94,6 +94,9 @@ class RunStore {
   // Compact 1 to 4.
   static constexpr int kFormatVersion = 4;
   static constexpr int kGenomeCheckpoint = 20;
+  static std::string FormatVersionLine() {  // for --version
+    return "run store format " + std::to_string(kFormatVersion);
+  }
 
   // Makes a new run directory. Refuses an existing non-empty directory unless `overwrite`, in
   // which case the old run's files are removed first. `config` and `physics` (the version of

@@ -120,6 +120,8 @@ int main(int argc, char** argv) {
       app.add_subcommand("from-vector", "Print the genome a vector file gives (values clipped)");
   from_vector->add_option("FILE", file, "vector file (JSON; - for stdin)")->required();
 
+  ahhs::base::SetVersion(app,
+                         {ahhs::modules::GenomeFormatLine(), ahhs::modules::GenomeVectorLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   try {

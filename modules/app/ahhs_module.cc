@@ -8,6 +8,8 @@
 #include "base/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
+#include "bus/wire_version.h"
+#include "modules/core/genome_json.h"
 #include "modules/node/module_node.h"
 
 namespace {
@@ -28,6 +30,7 @@ int main(int argc, char** argv) {
                  "lockstep timeout; 0: wait for every packet, exact lockstep)")
       ->check(CLI::Range(0, 600000))
       ->capture_default_str();
+  ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine(), ahhs::modules::GenomeFormatLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   options.hormone_timeout = std::chrono::milliseconds(timeout_ms);
   try {

@@ -14,6 +14,9 @@ namespace ahhs::modules {
 
 inline constexpr const char* kGenomeFormat = "ahhs-genome";
 inline constexpr int kGenomeFormatVersion = 1;
+inline std::string GenomeFormatLine() {  // for --version
+  return std::string("genome file ") + kGenomeFormat + " " + std::to_string(kGenomeFormatVersion);
+}
 
 class GenomeFileError : public std::runtime_error {
  public:

@@ -157,7 +157,7 @@ Genome GenomeFromVector(const Shape& shape, const std::vector<double>& x) {
 nlohmann::json VectorToJson(const Shape& shape, const std::vector<double>& x) {
   const VectorLayout layout = Build(shape);
   return {{"format", "ahhs-genome-vector"},
-          {"version", 1},
+          {"version", kGenomeVectorVersion},
           {"shape",
            {{"variant", VariantName(shape.variant)},
             {"hormones", shape.hormones},
@@ -174,9 +174,10 @@ std::vector<double> VectorFromJson(const nlohmann::json& doc, Shape* shape) {
   try {
     if (doc.at("format") != "ahhs-genome-vector")
       throw std::invalid_argument("not a genome vector (format must be ahhs-genome-vector)");
-    if (doc.at("version") != 1)
+    if (doc.at("version") != kGenomeVectorVersion)
       throw std::invalid_argument("genome vector version " + doc.at("version").dump() +
-                                  " (this build reads version 1)");
+                                  " (this build reads version " +
+                                  std::to_string(kGenomeVectorVersion) + ")");
     const auto& s = doc.at("shape");
     const std::string variant = s.at("variant").get<std::string>();
     if (variant != "ahhs1" && variant != "ahhs2")

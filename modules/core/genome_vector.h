@@ -40,8 +40,14 @@ std::vector<double> GenomeToVector(const Genome& genome);
 // is not finite, naming the field.
 Genome GenomeFromVector(const Shape& shape, const std::vector<double>& x);
 
-// A vector file (format "ahhs-genome-vector", version 1): the shape (variant, hormones, rules,
-// sensors, actuators), the values `x`, and the layout's `names`, `lower` and `upper`.
+inline constexpr int kGenomeVectorVersion = 1;
+inline std::string GenomeVectorLine() {  // for --version
+  return "genome vector " + std::to_string(kGenomeVectorVersion);
+}
+
+// A vector file (format "ahhs-genome-vector", version kGenomeVectorVersion): the shape (variant,
+// hormones, rules, sensors, actuators), the values `x`, and the layout's `names`, `lower` and
+// `upper`.
 nlohmann::json VectorToJson(const Shape& shape, const std::vector<double>& x);
 // Reads `shape` and `x` of a vector file (the layout's fields are not needed). Throws
 // std::invalid_argument naming what is missing or wrong.

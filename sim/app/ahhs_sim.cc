@@ -10,8 +10,10 @@
 
 #include "base/cli.h"
 #include "bus/lcm_bus.h"
+#include "bus/wire_version.h"
 #include "modules/core/random.h"
 #include "sim/app/sim_modes.h"
+#include "sim/core/constants.h"
 #include "sim/node/envelope_options.h"
 #include "sim/node/scenario_options.h"
 
@@ -87,6 +89,7 @@ int main(int argc, char** argv) {
   envelope_options.Add(app,
                        "with --drive: an envelope of noise drawn from --seed (default none; in bus "
                        "mode each RESET brings its own; docs/scenarios.md)");
+  ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine(), ahhs::sim::PhysicsVersionLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   as::Envelope envelope;
   try {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <string>
 
 namespace ahhs::sim {
 
@@ -17,6 +18,14 @@ inline constexpr const char* kGaitDampedPhysicsVersion = "2026-12-04";
 // solved by ODE's dWorldStep instead of the chain solver. The first study was made with them.
 inline constexpr const char* kGaitFixedDantzigPhysicsVersion = "2026-12-01";
 inline constexpr const char* kGaitDampedDantzigPhysicsVersion = "2026-12-01.2";
+
+// The physics versions for --version.
+inline std::string PhysicsVersionLine() {
+  return std::string("physics: pendulum ") + kPendulumPhysicsVersion + ", gait fixed " +
+         kGaitFixedPhysicsVersion + ", gait damped " + kGaitDampedPhysicsVersion +
+         " (replays gait fixed " + kGaitFixedDantzigPhysicsVersion + ", gait damped " +
+         kGaitDampedDantzigPhysicsVersion + ")";
+}
 
 struct PendulumConstants {
   // s per controller tick. The paper's slow sampling: a pendulum that keeps turning passes the

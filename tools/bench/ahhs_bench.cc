@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "base/cli.h"
+#include "sim/core/constants.h"
 #include "tools/bench/bench_arena.h"
 #include "tools/bench/bench_controller.h"
 #include "tools/bench/bench_evolve.h"
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   CLI::App* sim_cmd = sim.Add(app);
   CLI::App* arena_cmd = arena.Add(app);
   CLI::App* evolve_cmd = evolve.Add(app);
+  ahhs::base::SetVersion(app, {ahhs::sim::PhysicsVersionLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   if (controller_cmd->parsed()) controller.Run();
   if (sim_cmd->parsed()) sim.Run();

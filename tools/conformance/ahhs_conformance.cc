@@ -17,6 +17,7 @@
 #include "base/cli.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
+#include "bus/wire_version.h"
 #include "tools/conformance/model_vectors.h"
 #include "tools/conformance/module_player.h"
 #include "tools/conformance/player.h"
@@ -92,6 +93,9 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   app.add_option("--seed", seed, "module: seed of the genomes, sensor values and packets played")
       ->capture_default_str();
+  ahhs::base::SetVersion(
+      app, {ahhs::bus::WireVersionLine(),
+            "model vectors " + std::to_string(ahhs::conformance::kModelVectorsVersion)});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   if (role == "vectors") return RunVectors(write_vectors, check_vectors);
   if (app.count("--arena") == 0) {

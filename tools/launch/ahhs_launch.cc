@@ -8,6 +8,9 @@
 #include <iostream>
 
 #include "base/cli.h"
+#include "bus/wire_version.h"
+#include "modules/core/genome_json.h"
+#include "sim/core/constants.h"
 #include "tools/launch/launch_app.h"
 
 namespace {
@@ -22,6 +25,8 @@ int main(int argc, char** argv) {
       "ahhs-launch: one episode of a genome in an arena of separate processes (or --fused)"};
   ahhs::launch::LaunchOptions o;
   ahhs::launch::AddLaunchOptions(app, &o);
+  ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine(), ahhs::sim::PhysicsVersionLine(),
+                               ahhs::modules::GenomeFormatLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   ahhs::sim::Envelope envelope;
   try {

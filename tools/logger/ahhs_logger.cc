@@ -17,6 +17,7 @@
 #include <string>
 
 #include "base/cli.h"
+#include "bus/wire_version.h"
 
 namespace {
 
@@ -64,6 +65,7 @@ int main(int argc, char** argv) {
   app.add_option("--channel", channel, "channels to record (LCM regular expression)");
   app.add_flag("-f,--force", force, "overwrite FILE if it exists");
   app.add_option("FILE", path, "the log file to write")->required();
+  ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   std::error_code ec;

@@ -14,6 +14,9 @@
 #include <stdexcept>
 
 #include "base/cli.h"
+#include "bus/wire_version.h"
+#include "evolver/store/run_store.h"
+#include "sim/core/constants.h"
 #include "tools/replay/replay_options.h"
 #include "tools/replay/replay_run.h"
 #include "tools/replay/replay_target.h"
@@ -24,6 +27,8 @@ int main(int argc, char** argv) {
   CLI::App app{"ahhs-replay: one episode of a stored or given genome, with everything recorded"};
   ar::ReplayOptions o;
   ar::AddReplayOptions(app, &o);
+  ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine(), ahhs::sim::PhysicsVersionLine(),
+                               ahhs::evolver::RunStore::FormatVersionLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   // Of the replay; of --post-eval. A run's episodes keep the run's envelope unless one is given.
   ahhs::sim::Envelope envelope, post_envelope;

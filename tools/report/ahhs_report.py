@@ -30,6 +30,9 @@ def main(argv):
     if len(argv) >= 2 and argv[0] == "--bin":  # the build's wrapper passes its bin directory
         os.environ.setdefault("AHHS_BIN", argv[1])
         argv = argv[2:]
+    if argv and argv[0] == "--version":  # the wrapper passes the build's version
+        print(f"ahhs-report {os.environ.get('AHHS_VERSION', 'unknown')}")
+        return 0
     if argv and argv[0] == "study":
         return study_report.main(argv[1:])
     if argv and argv[0] == "steps":

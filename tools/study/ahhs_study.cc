@@ -27,6 +27,8 @@
 
 #include "base/children.h"
 #include "base/cli.h"
+#include "evolver/store/run_store.h"
+#include "sim/core/constants.h"
 #include "tools/study/study_runs.h"
 
 namespace fs = std::filesystem;
@@ -140,6 +142,8 @@ int main(int argc, char** argv) {
   report->add_option("-o,--out", report_dir, "output directory")->required();
   report->add_flag("--overwrite", overwrite, "replace a report in --out");
   report->add_flag("--no-replay", no_replay, "no replay figures and no mutation neighbourhoods");
+  ahhs::base::SetVersion(
+      app, {ahhs::evolver::RunStore::FormatVersionLine(), ahhs::sim::PhysicsVersionLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   try {

@@ -321,6 +321,8 @@ def filmstrip(args):
 
 def main():
     ap = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n")[0])
+    ap.add_argument("--version", action="version",  # the wrapper passes the build's version
+                    version=f"{PROG} {os.environ.get('AHHS_VERSION', 'unknown')}")
     sub = ap.add_subparsers(dest="cmd", required=True)
     common = argparse.ArgumentParser(add_help=False)
     common.add_argument("--size", type=parse_size, default=(1280, 720))

@@ -16,6 +16,8 @@
 #include "base/children.h"
 #include "base/cli.h"
 #include "bus/lcm_bus.h"
+#include "bus/wire_version.h"
+#include "evolver/store/run_store.h"
 #include "tools/view/view_options.h"
 #include "tools/view/view_session.h"
 #include "tools/view/web_server.h"
@@ -33,9 +35,11 @@ int main(int argc, char** argv) {
   CLI::App app{"ahhs-view: watch an arena, a log or an evolving run in a browser (docs/viewer.md)"};
   av::ViewOptions o;
   o.lcm_url = ahhs::bus::kDefaultLcmUrl;
-  o.web_root = AHHS_VIEW_WEB_ROOT;
+  o.web_root = ahhs::base::DataDir() + "/web";
   o.three_js = AHHS_THREE_JS;
   av::AddViewOptions(app, &o);
+  ahhs::base::SetVersion(
+      app, {ahhs::bus::WireVersionLine(), ahhs::evolver::RunStore::FormatVersionLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   av::Json hormones;
   if (const std::string error = av::CheckViewOptions(app, &o, &hormones); !error.empty()) {

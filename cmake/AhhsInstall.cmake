@@ -57,9 +57,9 @@ install(DIRECTORY ${src}/tools/report/ DESTINATION ${AHHS_DATA}/report COMPONENT
         FILES_MATCHING PATTERN "*.py")
 install(FILES ${src}/tools/view/ahhs_capture.py DESTINATION ${AHHS_DATA}/view COMPONENT lab)
 install(DIRECTORY ${src}/configs/ DESTINATION ${AHHS_DATA}/configs COMPONENT lab)
-install(DIRECTORY ${src}/studies/ DESTINATION ${AHHS_DATA}/studies COMPONENT lab
-        FILES_MATCHING PATTERN "*.toml" PATTERN "*.py" PATTERN "paper-2010" EXCLUDE
-        PATTERN "robust-evidence" EXCLUDE)
+# The plans and their scripts, not the studies' exported results (folders beside them).
+file(GLOB study_plans CONFIGURE_DEPENDS ${src}/studies/*.toml ${src}/studies/*.py)
+install(FILES ${study_plans} DESTINATION ${AHHS_DATA}/studies COMPONENT lab)
 install(FILES ${src}/tools/conformance/data/model-vectors.txt DESTINATION ${AHHS_DATA}/conformance
         COMPONENT lab)
 

@@ -170,7 +170,10 @@ fw=$!
 "$bin/ahhs-launch" --scenario gait --modules 3 --genome $tmp/g.json --seed 5 --duration 3 --realtime \
   --lcm-url "$url" --arena MIXED --hardware-modules 1 -v >$tmp/mixed.out 2>&1 || { cat $tmp/mixed.out; fail "mixed organism"; }
 wait $fw
-grep -q "60 readings sent, 60 commands applied, 0 dropped, 0 readings of others" $tmp/mixed-firmware.out ||
+# The launcher stops module 1's controller once the sim's last tick is done; under load its
+# command for that last tick can be cut off (a real-time episode does not wait for hardware),
+# so the firmware applies 59 or 60. Every reading is its own, and none is dropped.
+grep -Eq "60 readings sent, (59|60) commands applied, 0 dropped, 0 readings of others" $tmp/mixed-firmware.out ||
   fail "firmware of module 1: $(cat $tmp/mixed-firmware.out)"
 followed=$(sed -n 's/.*hardware readings followed \([0-9]*\).*/\1/p' $tmp/mixed.out)
 (( ${followed:-0} >= 50 )) || fail "the sim followed ${followed:-no} hardware readings: $(grep ahhs-sim $tmp/mixed.out)"

@@ -170,9 +170,9 @@ fw=$!
 "$bin/ahhs-launch" --scenario gait --modules 3 --genome $tmp/g.json --seed 5 --duration 3 --realtime \
   --lcm-url "$url" --arena MIXED --hardware-modules 1 -v >$tmp/mixed.out 2>&1 || { cat $tmp/mixed.out; fail "mixed organism"; }
 wait $fw
-# The launcher stops module 1's controller once the sim's last tick is done; under load its
-# command for that last tick can be cut off (a real-time episode does not wait for hardware),
-# so the firmware applies 59 or 60. Every reading is its own, and none is dropped.
+# A real-time episode does not wait for hardware: under load the command of the last tick can
+# miss the end of the episode (59 of 60, once, in a clean-clone CI run with a build running
+# beside; not investigated further). Every reading is the firmware's own, and none is dropped.
 grep -Eq "60 readings sent, (59|60) commands applied, 0 dropped, 0 readings of others" $tmp/mixed-firmware.out ||
   fail "firmware of module 1: $(cat $tmp/mixed-firmware.out)"
 followed=$(sed -n 's/.*hardware readings followed \([0-9]*\).*/\1/p' $tmp/mixed.out)

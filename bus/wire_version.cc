@@ -21,8 +21,8 @@
 namespace ahhs::bus {
 
 namespace {
-// Every type of package ahhs, in name order (a type added to lcmtypes/ is added here; the
-// test "the wire fingerprint covers every type" counts them).
+// Every type of package ahhs, in name order (a type added to lcmtypes/ is added here;
+// tools:packages checks that --version counts as many types as lcmtypes/ has files).
 const std::uint64_t kTypeHashes[] = {
     static_cast<std::uint64_t>(ahhs::eval_request_t::getHash()),
     static_cast<std::uint64_t>(ahhs::eval_result_t::getHash()),

@@ -67,6 +67,9 @@ for tool in "$P"/bin/*; do
   [[ $first == "$(basename "$tool") $version" ]] || fail "$(basename "$tool") --version: '$first'"
 done
 "$P/bin/ahhs-evolve" --version | grep -q "farm protocol" || fail "ahhs-evolve --version names no farm protocol"
+types=$(ls "$AHHS_SOURCE_DIR"/lcmtypes/*.lcm | wc -l)
+"$P/bin/ahhs-sim" --version | grep -q "package ahhs, $types types," ||
+  fail "the wire fingerprint does not cover the $types types of lcmtypes/"
 wire_lab=$("$P/bin/ahhs-sim" --version | grep wire)
 wire_module=$("$P/bin/ahhs-module" --version | grep wire)
 [[ -n $wire_lab && $wire_lab == "$wire_module" ]] || fail "wire lines differ: '$wire_lab' / '$wire_module'"

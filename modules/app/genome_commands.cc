@@ -32,7 +32,7 @@ void Show(const am::Genome& g) {
       for (int p = 1; p < 5; ++p)
         if (x.weights[static_cast<std::size_t>(p)] > x.weights[static_cast<std::size_t>(best)])
           best = p;
-      char dominant[32], window[40], out_h[24], out_a[24];
+      char dominant[32], window[40], out_h[48], out_a[48];
       std::snprintf(dominant, sizeof dominant, "%s %.2f", am::Ahhs2PartName(best),
                     x.weights[static_cast<std::size_t>(best)]);
       std::snprintf(window, sizeof window, "[%+.3f, %+.3f]", x.zeta - x.eta, x.zeta + x.eta);

@@ -130,9 +130,11 @@ grep -q "ticks without a state at the fitness monitor: 0$" $tmp/phys.out ||
   fail "a tick's state missed: $(cat $tmp/phys.out)"
 grep -q "put the organism at its start" $tmp/server.out || fail "server did not ask the operator: $(cat $tmp/server.out)"
 grep -q "finished after 40 ticks" $tmp/server.out || fail "server: $(cat $tmp/server.out)"
-[[ $(grep -c '40 readings sent, 40 commands applied, 0 dropped, 0 readings of others' $tmp/PHYS.roles) == 3 ]] ||
+# As in section 8: a real-time episode does not wait for the last tick's command (seen: 39 of 40
+# on two of the three boards, in CI's ASan pass).
+[[ $(grep -Ec '40 readings sent, (39|40) commands applied, 0 dropped, 0 readings of others' $tmp/PHYS.roles) == 3 ]] ||
   fail "firmware: $(cat $tmp/PHYS.roles)"
-echo "fitness $f from the tracker; each firmware got the 40 hinge commands of its module"
+echo "fitness $f from the tracker; each firmware got the hinge commands of its module (39 or 40 of 40)"
 physical BUTTON
 "$bin/ahhs-sim" --physics none --arena BUTTON --lcm-url "$url" --episodes 1 </dev/null >$tmp/button-server.out 2>&1 &
 "$bin/role_peer" --role button --arena BUTTON --lcm-url "$url" --seconds 2 >/dev/null 2>&1 &

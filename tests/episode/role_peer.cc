@@ -12,8 +12,8 @@
 //       without waiting for the neighbours' packets), any-episode (takes SENSORS and HORMONE of
 //       any episode)
 //   role_peer --role faulty-server --lcm-url URL --arena A --seconds S
-//       an episode server (ahhs-conformance sim must fail it): its clock runs on its own 19 Hz
-//       timer, any episode's STOP ends the episode, FINISHED goes out once, and it answers a
+//       an episode server (ahhs-conformance sim must fail it): its clock runs on its own 15 Hz
+//       timer (by tick 10, where the kit's foreign STOP ends it, 167 ms behind a 20 Hz schedule), any episode's STOP ends the episode, FINISHED goes out once, and it answers a
 //       RESET of any scenario
 // (Correct ones: ahhs-module, examples/controller-lua, examples/firmware-c, examples/tracker-c.)
 //   role_peer --role button --lcm-url URL --arena A --seconds S
@@ -85,7 +85,7 @@ class FaultyServer {
   }
   void Tick() {
     if (!running_ || std::chrono::steady_clock::now() < next_) return;
-    next_ += std::chrono::microseconds(1000000 / 19);  // its own timer
+    next_ += std::chrono::microseconds(1000000 / 15);  // its own timer
     if (tick_ == ticks_) {
       running_ = false;
       Clock(sim_clock_t::FINISHED);  // once

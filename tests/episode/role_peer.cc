@@ -13,8 +13,9 @@
 //       any episode)
 //   role_peer --role faulty-server --lcm-url URL --arena A --seconds S
 //       an episode server (ahhs-conformance sim must fail it): its clock runs on its own 15 Hz
-//       timer (by tick 10, where the kit's foreign STOP ends it, 167 ms behind a 20 Hz schedule), any episode's STOP ends the episode, FINISHED goes out once, and it answers a
-//       RESET of any scenario
+//       timer (by tick 10, where the kit's foreign STOP ends it, 167 ms behind a 20 Hz schedule),
+//       any episode's STOP ends the episode, FINISHED goes out once, and it answers a RESET of any
+//       scenario
 // (Correct ones: ahhs-module, examples/controller-lua, examples/firmware-c, examples/tracker-c.)
 //   role_peer --role button --lcm-url URL --arena A --seconds S
 //       an operator's button: SIM/CONTROL CONFIRM once, after S seconds

@@ -41,7 +41,7 @@ class EvaluatorTest(unittest.TestCase):
             f.flush()
             t = results[0]["trials"][0]
             out = subprocess.run([os.path.join(BIN, "ahhs-launch")] + TASK +
-                                 ["--genome", f.name, "--seed", str(t["seed"]), "--fused"],
+                                 ["--genome", f.name, "--seed", str(t["seed"]), "--arena-kind", "fused"],
                                  capture_output=True, text=True, check=True).stdout
         launched = [l for l in out.splitlines() if l.startswith("fitness: ")][-1]
         self.assertEqual(float(launched.split()[1]), t["fitness"])

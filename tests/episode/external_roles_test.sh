@@ -81,7 +81,7 @@ expect_usage() {  # MESSAGE ARGS...
 expect_usage "needs --arena NAME" "${launch[@]}" --external module:1
 expect_usage "modules are 0 to 2" "${launch[@]}" --arena X --external module:3
 expect_usage "unknown role 'motor'" "${launch[@]}" --arena X --external motor
-expect_usage "not --fused" "$bin/ahhs-launch" --genome $tmp/g.json --fused --arena X --external sim
+expect_usage "not --arena-kind fused" "$bin/ahhs-launch" --genome $tmp/g.json --arena-kind fused --arena X --external sim
 expect_usage "needs --arena-kind processes" "$bin/ahhs-worker" --any-run --external module:1
 expect_usage "needs --arena NAME and --arena-url URL" "$bin/ahhs-worker" --any-run --arena-kind processes --external module:1
 expect_usage "--slots must be 1" "$bin/ahhs-worker" --any-run --arena-kind processes --arena A --arena-url "$url" --slots 2 --external module:1

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # ahhs-launch end to end, inside a private network namespace:
 #  1. fused (inproc:// and LCM's memq://) and process arenas give bit-identical fitness
-#     (pendulum, gait; AHHS1, AHHS2; seeds); --fused refuses a URL that leaves the process;
+#     (pendulum, gait; AHHS1, AHHS2; seeds); --arena-kind fused refuses a URL that leaves the
+#     process; the deprecated --fused still works and says so;
 #  2. a genome of the wrong shape is refused;
 #  3. --log records every tick of every module (ahhs-logger); replaying the log into a fresh
 #     ahhs-fitness gives the live fitness; --logger lcm-logger also records;
@@ -27,20 +28,30 @@ $G random --variant ahhs1 --hormones 5 --rules 80 --sensors 4 --actuators 1 --se
 echo "== 1. fused == processes"
 for c in "pendulum p2 1 30" "pendulum p1 2 30" "gait g2 3 10" "gait g1 4 10" "gait g2 5 10 --joints fixed"; do
   set -- $c
-  "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --fused >$tmp/f.out || fail "fused $c"
-  "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --fused --lcm-url memq:// >$tmp/m.out || fail "fused on memq $c"
+  "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --arena-kind fused >$tmp/f.out || fail "fused $c"
+  "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --arena-kind fused --lcm-url memq:// >$tmp/m.out || fail "fused on memq $c"
   "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --lcm-url "$url" >$tmp/p.out 2>$tmp/p.err || { cat $tmp/p.err; fail "processes $c"; }
   echo "$c: fused $(fit $tmp/f.out) fused on memq $(fit $tmp/m.out) processes $(fit $tmp/p.out)"
   [[ -n "$(fit $tmp/f.out)" && "$(fit $tmp/f.out)" == "$(fit $tmp/p.out)" ]] || fail "fused and process fitness differ ($c)"
   [[ "$(fit $tmp/f.out)" == "$(fit $tmp/m.out)" ]] || fail "inproc:// and memq:// differ ($c)"
 done
-if "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --fused --lcm-url "$url" 2>$tmp/err; then fail "--fused on udpm accepted"; fi
-grep -q "must be inproc:// or memq://" $tmp/err || fail "--fused URL message: $(cat $tmp/err)"
+if "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --arena-kind fused --lcm-url "$url" 2>$tmp/err; then fail "--arena-kind fused on udpm accepted"; fi
+grep -q "must be inproc:// or memq://" $tmp/err || fail "--arena-kind fused URL message: $(cat $tmp/err)"
 if "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --lcm-url inproc:// 2>$tmp/err; then fail "process arena on inproc:// accepted"; fi
-grep -q "use it with --fused" $tmp/err || fail "inproc URL message: $(cat $tmp/err)"
+grep -q "use it with --arena-kind fused" $tmp/err || fail "inproc URL message: $(cat $tmp/err)"
+# The old --fused, for one release: the same episode, and a line that says what replaced it.
+"$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --seed 1 --duration 30 --fused >$tmp/old.out 2>$tmp/old.err ||
+  fail "--fused: $(cat $tmp/old.err)"
+grep -q "^ahhs-launch: --fused is deprecated and will go; use --arena-kind fused$" $tmp/old.err || fail "--fused: $(cat $tmp/old.err)"
+"$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --seed 1 --duration 30 --arena-kind fused >$tmp/f.out
+[[ "$(fit $tmp/old.out)" == "$(fit $tmp/f.out)" ]] || fail "--fused gives $(fit $tmp/old.out), --arena-kind fused $(fit $tmp/f.out)"
+code=0
+"$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --fused --arena-kind processes >/dev/null 2>$tmp/err || code=$?
+[[ $code == 2 ]] && grep -q "excludes" $tmp/err || fail "--fused with --arena-kind: exit $code, $(cat $tmp/err)"
+echo "--fused still works, says it is deprecated, and gives the fitness of --arena-kind fused"
 
 echo "== 2. wrong genome shape"
-if "$bin/ahhs-launch" --scenario gait --genome $tmp/p2.json --fused 2>$tmp/err; then fail "shape accepted"; fi
+if "$bin/ahhs-launch" --scenario gait --genome $tmp/p2.json --arena-kind fused 2>$tmp/err; then fail "shape accepted"; fi
 grep -q "gives each module 4 sensors and 1 actuators" $tmp/err || fail "shape message: $(cat $tmp/err)"
 
 echo "== 3. log and replay"
@@ -88,15 +99,15 @@ echo "interrupted: exit status $rc, no orphans"
 
 echo "== seeds are unsigned 64-bit numbers, never clamped"
 big=17941434774548605579 int64_max=9223372036854775807
-"$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 2 --seed $big --fused >$tmp/big.out || fail "seed above 2^63"
-"$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 2 --seed $int64_max --fused >$tmp/max.out || fail "seed 2^63-1"
+"$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 2 --seed $big --arena-kind fused >$tmp/big.out || fail "seed above 2^63"
+"$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 2 --seed $int64_max --arena-kind fused >$tmp/max.out || fail "seed 2^63-1"
 grep -q "seed $big," $tmp/big.out || fail "the seed printed is not the one given: $(cat $tmp/big.out)"
 [[ "$(tail -1 $tmp/big.out)" != "$(tail -1 $tmp/max.out)" ]] || fail "seed $big gave the fitness of $int64_max (clamped?)"
 "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --duration 2 --seed $big --lcm-url "$url" >$tmp/bigp.out 2>/dev/null ||
   fail "seed above 2^63 in the process arena"
 [[ "$(tail -1 $tmp/big.out)" == "$(tail -1 $tmp/bigp.out)" ]] || fail "seed above 2^63: fused and process arenas differ"
 for bad in -1 18446744073709551616 x; do
-  if "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --seed $bad --fused >/dev/null 2>$tmp/bad.err; then
+  if "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --seed $bad --arena-kind fused >/dev/null 2>$tmp/bad.err; then
     fail "--seed $bad accepted"
   fi
   grep -q -- "--seed" $tmp/bad.err || fail "--seed $bad: $(cat $tmp/bad.err)"
@@ -117,7 +128,7 @@ for m in 0 1 2 3 4; do chans="$chans,GARB/MODULE$m/SENSORS,GARB/MODULE$m/HINGE,G
 "$bin/bus_peer" --role spam --lcm-url "$url" --channels "$chans" --seconds 8 >$tmp/spam.out & sp=$!
 "$bin/ahhs-launch" --scenario gait --genome $tmp/g2.json --seed 3 --duration 10 --arena GARB --lcm-url "$url" >$tmp/garb.out 2>$tmp/garb.err || { cat $tmp/garb.err; fail "run under garbage"; }
 wait $sp
-"$bin/ahhs-launch" --scenario gait --genome $tmp/g2.json --seed 3 --duration 10 --fused >$tmp/clean.out
+"$bin/ahhs-launch" --scenario gait --genome $tmp/g2.json --seed 3 --duration 10 --arena-kind fused >$tmp/clean.out
 echo "under garbage $(fit $tmp/garb.out), clean $(fit $tmp/clean.out); $(cat $tmp/spam.out)"
 [[ "$(fit $tmp/garb.out)" == "$(fit $tmp/clean.out)" ]] || fail "garbage changed the fitness"
 grep "ahhs-sim: episode" $tmp/garb.err | grep -q "dropped [1-9]" || fail "garbage not counted by the sim"

@@ -66,7 +66,7 @@ echo "== 2. every trial is what ahhs-launch gives"
 while read -r id seed fitness; do
   genome=$tmp/g.json
   [[ $id == vec ]] && genome=$tmp/vec.json
-  got=$("$bin/ahhs-launch" $task --envelope paper --genome $genome --seed $seed --fused | sed -n 's/^fitness: //p')
+  got=$("$bin/ahhs-launch" $task --envelope paper --genome $genome --seed $seed --arena-kind fused | sed -n 's/^fitness: //p')
   python3 -c "import sys; sys.exit(float('$got') != $fitness)" || fail "$id seed $seed: service $fitness, ahhs-launch $got"
 done <$tmp/launches
 echo "  $(wc -l <$tmp/launches) trials reproduced exactly"

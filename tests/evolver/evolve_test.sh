@@ -36,12 +36,12 @@ ls $tmp/p-direct-1/best/gen-000{0,1,2,3,4}.json >/dev/null || fail "best genome 
 # The replay command reproduces the stored best fitness.
 replay=$(sed -n "s|^replay the best genome: $bin/ahhs-launch ||p" $tmp/out)
 best=$(sed -n 's/^best fitness: \([^ ]*\) .*/\1/p' $tmp/out)
-"$bin/ahhs-launch" $replay --fused >$tmp/replay.out || fail "replay"
+"$bin/ahhs-launch" $replay --arena-kind fused >$tmp/replay.out || fail "replay"
 [[ "$(tail -1 $tmp/replay.out)" == "fitness: $best" ]] || fail "replay gives $(tail -1 $tmp/replay.out), stored $best"
 echo "replayed best: $best"
 # Without --seed, ahhs-launch and ahhs-replay --genome use the evaluation seed best.json stores,
 # say so, and reproduce the stored fitness.
-"$bin/ahhs-launch" --scenario pendulum --duration 10 --genome $tmp/p-direct-1/best.json --fused >$tmp/noseed.out ||
+"$bin/ahhs-launch" --scenario pendulum --duration 10 --genome $tmp/p-direct-1/best.json --arena-kind fused >$tmp/noseed.out ||
   fail "launch without --seed"
 grep -q "^seed [0-9]*: the evaluation seed stored in $tmp/p-direct-1/best.json" $tmp/noseed.out ||
   fail "launch does not say which seed: $(cat $tmp/noseed.out)"
@@ -134,7 +134,7 @@ PY
 replay=$(sed -n "s|^replay the best genome's first trial (fitness \([^)]*\)): $bin/ahhs-launch ||p" $tmp/out)
 first=$(sed -n "s|^replay the best genome's first trial (fitness \([^)]*\)).*|\1|p" $tmp/out)
 [[ $replay == *"--envelope paper"* ]] || fail "robust replay command: $(grep replay $tmp/out)"
-"$bin/ahhs-launch" $replay --fused >$tmp/replay.out || fail "robust replay"
+"$bin/ahhs-launch" $replay --arena-kind fused >$tmp/replay.out || fail "robust replay"
 [[ "$(tail -1 $tmp/replay.out)" == "fitness: $first" ]] || fail "robust replay gives $(tail -1 $tmp/replay.out), trial 0 stored $first"
 "$bin/ahhs-replay" $tmp/r-whole >$tmp/replay.out || fail "ahhs-replay of a robust run"
 grep -q "trial 0 of 3 (the median of all 3 is" $tmp/replay.out && grep -q "reproduced exactly" $tmp/replay.out ||

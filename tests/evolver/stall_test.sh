@@ -21,8 +21,15 @@ stalls=0
 for plan in "ahhs-module 2.5" "ahhs-sim 2.5" "ahhs-fitness 2.5" "ahhs-module 11"; do
   read -r victim seconds <<<"$plan"
   sleep 0.8
-  mapfile -t pids < <(pgrep -g "$pg" -f "$bin/$victim( |$)")
-  [[ ${#pids[@]} -gt 0 ]] || break  # the run is over
+  # The victim, once the workers have started their arenas (under load that can take longer
+  # than the first 0.8 s: seen once in CI); none while the evolver runs no more: the run is over.
+  pids=()
+  for _ in $(seq 1 200); do
+    mapfile -t pids < <(pgrep -g "$pg" -f "$bin/$victim( |$)")
+    if [[ ${#pids[@]} -gt 0 ]] || ! kill -0 $evolver 2>/dev/null; then break; fi
+    sleep 0.05
+  done
+  [[ ${#pids[@]} -gt 0 ]] || break
   pid=${pids[$((stalls % ${#pids[@]}))]}
   kill -STOP "$pid" && sleep "$seconds" && kill -CONT "$pid" && stalls=$((stalls + 1))
   echo "  stopped $victim ($pid) for $seconds s"

@@ -1,5 +1,6 @@
 // ahhs-launch: runs one episode of a genome in an arena made of separate processes (ahhs-sim,
-// one ahhs-module per compartment, ahhs-fitness), or with --fused in this process (inproc://).
+// one ahhs-module per compartment, ahhs-fitness), or with --arena-kind fused in this process
+// (inproc://).
 // Prints "fitness: <value>" as its last line. Every child is stopped on success, on error and on
 // Ctrl-C; children also die with the launcher (PR_SET_PDEATHSIG). tools/launch/launch_app.h.
 #include <CLI/CLI.hpp>
@@ -22,7 +23,8 @@ void OnSignal(int) { g_interrupted = true; }
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "ahhs-launch: one episode of a genome in an arena of separate processes (or --fused)"};
+      "ahhs-launch: one episode of a genome in an arena of separate processes (or fused into "
+      "this one: --arena-kind fused)"};
   ahhs::launch::LaunchOptions o;
   ahhs::launch::AddLaunchOptions(app, &o);
   ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine(), ahhs::sim::PhysicsVersionLine(),

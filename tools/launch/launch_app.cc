@@ -27,8 +27,15 @@ void AddLaunchOptions(CLI::App& app, LaunchOptions* o) {
                  "episode seed, 0 to 2^64-1 (default: the genome file's stored evaluation seed, "
                  "else 1)")
       ->check(ahhs::modules::SeedTextError);
-  app.add_flag("--fused", o->fused,
-               "run every node in this process (on inproc://, or memq:// with --lcm-url memq://)");
+  CLI::Option* kind =
+      app.add_option("--arena-kind", o->arena_kind,
+                     "how the episode runs: processes (one per role, over --lcm-url) or fused "
+                     "(every node in this process, on inproc://, or memq:// with --lcm-url "
+                     "memq://), as ahhs-evolve's and ahhs-worker's --arena-kind")
+          ->check(CLI::IsMember({"processes", "fused"}))
+          ->capture_default_str();
+  // The old flag, for one release: it says what replaced it.
+  app.add_flag("--fused", o->fused, "deprecated: use --arena-kind fused")->excludes(kind);
   app.add_flag("--realtime", o->realtime,
                "the sim keeps wall-clock pace; modules act on the latest messages");
   app.add_option("--log", o->log_file, "record the whole episode into this LCM log file");
@@ -39,8 +46,8 @@ void AddLaunchOptions(CLI::App& app, LaunchOptions* o) {
       ->check(CLI::IsMember({"ahhs-logger", "lcm-logger"}))
       ->capture_default_str();
   app.add_option("--lcm-url", o->url,
-                 "bus URL: for the processes (default: host-only multicast); with --fused, "
-                 "inproc:// (default) or memq://");
+                 "bus URL: for the processes (default: host-only multicast); with --arena-kind "
+                 "fused, inproc:// (default) or memq://");
   app.add_option("--arena", o->arena, "arena name (default: unique per launch)");
   app.add_option("--timeout", o->timeout_s, "give up after this many seconds")
       ->check(CLI::PositiveNumber)
@@ -71,6 +78,9 @@ void AddLaunchOptions(CLI::App& app, LaunchOptions* o) {
 
 int SpecFromOptions(const CLI::App& app, LaunchOptions* o, const ahhs::sim::Envelope& envelope,
                     ep::EpisodeSpec* spec, std::string* error) {
+  if (app.count("--fused") > 0)
+    std::cerr << "ahhs-launch: --fused is deprecated and will go; use --arena-kind fused\n";
+  o->fused = o->fused || o->arena_kind == "fused";
   try {
     if (o->task.duration_given() && !(o->task.duration > 0))
       throw std::invalid_argument("--duration must be positive");
@@ -96,18 +106,20 @@ int SpecFromOptions(const CLI::App& app, LaunchOptions* o, const ahhs::sim::Enve
     }
     if (o->fused && !o->log_file.empty())
       throw std::invalid_argument(
-          "--log records bus traffic; it needs the process arena, not --fused");
+          "--log records bus traffic; it needs the process arena, not --arena-kind fused");
     if (o->fused && !o->url.empty() && !ahhs::bus::IsInProcessUrl(o->url))
       throw std::invalid_argument(
-          "--fused runs in this process: --lcm-url must be inproc:// or "
+          "--arena-kind fused runs in this process: --lcm-url must be inproc:// or "
           "memq://, not '" +
           o->url + "'");
     if (!o->fused && ahhs::bus::IsInProcessUrl(o->url))
-      throw std::invalid_argument("'" + o->url + "' stays inside one process: use it with --fused");
+      throw std::invalid_argument("'" + o->url +
+                                  "' stays inside one process: use it with --arena-kind fused");
     if (!o->hardware_modules.empty() && (o->fused || !o->realtime))
       throw std::invalid_argument("--hardware-modules needs the process arena and --realtime");
     if (!o->external.empty()) {
-      if (o->fused) throw std::invalid_argument("--external needs the process arena, not --fused");
+      if (o->fused)
+        throw std::invalid_argument("--external needs the process arena, not --arena-kind fused");
       if (o->arena.empty())
         throw std::invalid_argument(
             "--external needs --arena NAME: the external roles must know it");

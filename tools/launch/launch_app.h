@@ -17,7 +17,9 @@ struct LaunchOptions {
   std::string genome_file, url, arena, log_file, logger = "ahhs-logger", external, hardware_modules;
   ahhs::sim::ScenarioOptions task;
   std::uint64_t seed = 1;
-  bool fused = false, realtime = false, verbose = false, overwrite = false;
+  std::string arena_kind = "processes";  // --arena-kind: processes or fused
+  bool fused = false;                    // arena_kind is fused (or the deprecated --fused)
+  bool realtime = false, verbose = false, overwrite = false;
   int timeout_s = 3600, lockstep_timeout_ms = 2000, external_timeout_s = 60;
   ahhs::sim::EnvelopeOptions envelope_options;
 };

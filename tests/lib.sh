@@ -49,10 +49,13 @@ _ahhs_cleanup() {
   rm -rf "$tmp"
 }
 
-# figures_in_ci_tier_only: true in the sanitizer tier (the asan test preset sets AHHS_TEST_TIER),
-# where a test skips what only drives Python figures and tables over files its C++ part made: that
-# part is checked in the ci tier; the sanitizers look for memory errors in the C++ (docs/development.md).
-figures_in_ci_tier_only() {
+# ci_tier_only WHAT: true in the sanitizer tier (the asan test preset sets AHHS_TEST_TIER), where a
+# test skips a part that the sanitizers cannot add to: Python figures and tables over files its
+# C++ part made, or more of the same C++ path with other numbers (a physics check that repeats
+# the replay that the sanitizer tier already ran once). Such a part is checked in the ci tier,
+# which runs every test whole; the sanitizers look for memory errors in the C++
+# (docs/development.md, "Tests").
+ci_tier_only() {
   [[ "${AHHS_TEST_TIER:-}" == asan ]] || return 1
   echo "  (sanitizer tier: $1 is checked in the ci tier)"
 }

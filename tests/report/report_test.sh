@@ -42,7 +42,7 @@ grep -Eq "reproduced exactly|in the changed physics \(--physics-step, --friction
 "$bin/ahhs-replay" $tmp/a2-1 --mutants 3 --mutants-csv $tmp/mutants.csv >/dev/null 2>&1 || fail "replay --mutants"
 [[ $(wc -l <$tmp/mutants.csv) == 5 ]] || fail "mutants.csv: $(cat $tmp/mutants.csv)"
 
-if ! figures_in_ci_tier_only "ahhs-report (figures, neighbourhood, steps, the random genomes' table)"; then
+if ! ci_tier_only "ahhs-report (figures, neighbourhood, steps, the random genomes' table)"; then
 echo "== ahhs-report"
 "$bin/ahhs-report" $tmp/a2-{1,2,3} $tmp/a1-{1,2,3} $tmp/gait -o $tmp/report >$tmp/report.out 2>&1 ||
   { cat $tmp/report.out; fail "ahhs-report"; }

@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <iostream>
 #include <sstream>
@@ -90,20 +91,21 @@ std::string& ProgramName() {
 
 const char* Version() { return AHHS_VERSION; }
 
-void SetVersion(CLI::App& app, std::vector<std::string> speaks) {
-  app.set_version_flag("--version", [speaks = std::move(speaks)] {
+void SetVersion(cli::App& app, std::vector<std::string> speaks) {
+  app.native().set_version_flag("--version", [speaks = std::move(speaks)] {
     std::string text = ProgramName() + " " + Version();
     for (const std::string& line : speaks) text += "\n  " + line;
     return text;
   });
 }
 
-int Parse(CLI::App& app, int argc, char** argv) {
+int Parse(cli::App& facade, int argc, char** argv) {
+  CLI::App& app = facade.native();
   if (argc > 0) {
     const std::string path = argv[0];
     ProgramName() = path.substr(path.rfind('/') + 1);
   }
-  if (app.get_option_no_throw("--version") == nullptr) SetVersion(app, {});
+  if (app.get_option_no_throw("--version") == nullptr) SetVersion(facade, {});
   try {
     app.parse(argc, argv);
     return -1;
@@ -144,5 +146,108 @@ std::string RefuseExisting(const std::vector<std::string>& paths, bool overwrite
   }
   return "";
 }
+
+namespace cli {
+
+struct Validator::Spec {
+  std::function<CLI::Validator()> make;
+};
+
+namespace {
+Validator Make(std::function<CLI::Validator()> make) {
+  return Validator(std::make_shared<const Validator::Spec>(Validator::Spec{std::move(make)}));
+}
+}  // namespace
+
+Validator::Validator(Check check, const std::string& name)
+    : Validator(std::make_shared<const Spec>(
+          Spec{[check = std::move(check), name] { return CLI::Validator(check, name); }})) {}
+
+Validator RangeReal(double low, double high) {
+  return Make([=] { return CLI::Validator(CLI::Range(low, high)); });
+}
+Validator RangeInteger(long long low, long long high) {
+  return Make([=] { return CLI::Validator(CLI::Range(low, high)); });
+}
+Validator IsMember(std::vector<std::string> members) {
+  return Make([members = std::move(members)] { return CLI::Validator(CLI::IsMember(members)); });
+}
+const Validator ExistingFile = Make([] { return CLI::Validator(CLI::ExistingFile); });
+const Validator PositiveNumber = Make([] { return CLI::Validator(CLI::PositiveNumber); });
+const Validator NonNegativeNumber = Make([] { return CLI::Validator(CLI::NonNegativeNumber); });
+
+Option* Option::required(bool value) {
+  native_->required(value);
+  return this;
+}
+Option* Option::check(const Validator& validator) {
+  native_->check(validator.spec().make());
+  return this;
+}
+Option* Option::capture_default_str() {
+  native_->capture_default_str();
+  return this;
+}
+Option* Option::default_str(const std::string& text) {
+  native_->default_str(text);
+  return this;
+}
+Option* Option::excludes(Option* other) {
+  native_->excludes(other->native_);
+  return this;
+}
+Option* Option::delimiter(char separator) {
+  native_->delimiter(separator);
+  return this;
+}
+Option* Option::each(std::function<void(const std::string&)> on_value) {
+  native_->each(std::move(on_value));
+  return this;
+}
+std::size_t Option::count() const { return native_->count(); }
+
+App::App(const std::string& description, const std::string& name)
+    : owned_(std::make_unique<CLI::App>(description, name)), native_(owned_.get()) {}
+App::App(CLI::App* subcommand) : native_(subcommand) {}
+App::~App() = default;
+
+Option* App::Keep(CLI::Option* option) {
+  options_.emplace_back(option);
+  return &options_.back();
+}
+
+#define AHHS_CLI_ADD_OPTION(T)                                                          \
+  Option* App::add_option(const std::string& name, T& value, const std::string& help) { \
+    return Keep(native_->add_option(name, value, help));                                \
+  }
+AHHS_CLI_ADD_OPTION(std::string)
+AHHS_CLI_ADD_OPTION(int)
+AHHS_CLI_ADD_OPTION(unsigned)
+AHHS_CLI_ADD_OPTION(long)
+AHHS_CLI_ADD_OPTION(unsigned long)
+AHHS_CLI_ADD_OPTION(long long)
+AHHS_CLI_ADD_OPTION(unsigned long long)
+AHHS_CLI_ADD_OPTION(double)
+AHHS_CLI_ADD_OPTION(std::vector<std::string>)
+AHHS_CLI_ADD_OPTION(std::vector<int>)
+AHHS_CLI_ADD_OPTION(std::vector<double>)
+#undef AHHS_CLI_ADD_OPTION
+
+Option* App::add_flag(const std::string& name, bool& value, const std::string& help) {
+  return Keep(native_->add_flag(name, value, help));
+}
+
+App* App::add_subcommand(const std::string& name, const std::string& description) {
+  subcommands_.push_back(std::unique_ptr<App>(new App(native_->add_subcommand(name, description))));
+  return subcommands_.back().get();
+}
+App* App::require_subcommand(int count) {
+  native_->require_subcommand(count);
+  return this;
+}
+bool App::parsed() const { return native_->parsed(); }
+std::size_t App::count(const std::string& name) const { return native_->count(name); }
+
+}  // namespace cli
 
 }  // namespace ahhs::base

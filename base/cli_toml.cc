@@ -2,6 +2,7 @@
 
 #include <toml++/toml.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <optional>
 #include <sstream>
@@ -111,7 +112,8 @@ class StrictTomlConfig : public CLI::Config {
 
 }  // namespace
 
-void AddStrictTomlConfig(CLI::App& app, const std::string& help) {
+void AddStrictTomlConfig(cli::App& facade, const std::string& help) {
+  CLI::App& app = facade.native();
   app.allow_config_extras(CLI::config_extras_mode::error);
   app.config_formatter(std::make_shared<StrictTomlConfig>(&app));
   app.set_config("--config", "", help);

@@ -5,11 +5,13 @@
 // (did you mean population?)"). Options on the command line still override the file.
 #pragma once
 
-#include <CLI/CLI.hpp>
+#include <string>
+
+#include "base/cli.h"
 
 namespace ahhs::base {
 
 // Adds `--config FILE` to `app`, read strictly as above.
-void AddStrictTomlConfig(CLI::App& app, const std::string& help);
+void AddStrictTomlConfig(cli::App& app, const std::string& help);
 
 }  // namespace ahhs::base

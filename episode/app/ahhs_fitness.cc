@@ -1,7 +1,6 @@
 // ahhs-fitness: the fitness monitor as its own process. Follows SIM/STATE (from the sim, a
 // tracker, or lcm-logplayer) and publishes FITNESS; prints "fitness: <value>" for every episode
 // that ends, and exits after --episodes of them.
-#include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -13,24 +12,26 @@
 #include "bus/wire_version.h"
 #include "episode/fitness/fitness_node.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace {
 std::atomic<bool> g_stop{false};
 void OnSignal(int) { g_stop = true; }
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"ahhs-fitness: task fitness from the organism's state (SIM/STATE)"};
+  cli::App app{"ahhs-fitness: task fitness from the organism's state (SIM/STATE)"};
   std::string url = ahhs::bus::kDefaultLcmUrl, arena = ahhs::bus::kDefaultArena;
   int episodes = 0;
   double timeout = 0;
   app.add_option("--lcm-url", url, "LCM URL")->capture_default_str();
   app.add_option("--arena", arena, "arena name: channel prefix")->capture_default_str();
   app.add_option("--episodes", episodes, "exit after this many episodes (0 = run until killed)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::NonNegativeNumber)
       ->capture_default_str();
   app.add_option("--timeout", timeout,
                  "give up after this many seconds without a final result (0 = never)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::NonNegativeNumber);
   ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   try {

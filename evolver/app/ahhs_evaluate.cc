@@ -4,7 +4,6 @@
 // Ends at the end of its input (exit 0) or on Ctrl-C (exit 130).
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -26,6 +25,8 @@
 #include "sim/node/envelope_options.h"
 #include "sim/node/scenario_options.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace ev = ahhs::evolver;
 
 namespace {
@@ -36,7 +37,7 @@ void OnSignal(int) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{
+  cli::App app{
       "ahhs-evaluate: evaluates batches of genomes for any optimizer (JSON lines on "
       "stdin and stdout, docs/protocol.md)"};
   ahhs::sim::ScenarioOptions task;
@@ -46,38 +47,40 @@ int main(int argc, char** argv) {
   std::string variant = "ahhs2", aggregate = "mean", url = ahhs::bus::kDefaultLcmUrl,
               arena = "direct";
   ev::ServiceSettings settings;
+  settings.shape.hormones = 5;
+  settings.shape.rules = 30;
   int workers = -1;
   double job_deadline = 300, worker_wait = 60;
   app.add_option("--variant", variant, "the shape of vector genomes: ahhs1 or ahhs2")
-      ->check(CLI::IsMember({"ahhs1", "ahhs2"}))
+      ->check(cli::IsMember({"ahhs1", "ahhs2"}))
       ->capture_default_str();
   app.add_option("--hormones", settings.shape.hormones, "hormones of vector genomes")
-      ->check(CLI::Range(1, ahhs::modules::Ranges::kMaxHormones))
-      ->default_val(5);
+      ->check(cli::Range(1, ahhs::modules::Ranges::kMaxHormones))
+      ->capture_default_str();
   app.add_option("--rules", settings.shape.rules, "rules of vector genomes")
-      ->check(CLI::Range(0, ahhs::modules::Ranges::kMaxRules))
-      ->default_val(30);
+      ->check(cli::Range(0, ahhs::modules::Ranges::kMaxRules))
+      ->capture_default_str();
   app.add_option("--trials", settings.trials, "episodes per genome, each with its own seed")
-      ->check(CLI::Range(1, ev::kMaxTrials))
+      ->check(cli::Range(1, ev::kMaxTrials))
       ->capture_default_str();
   app.add_option("--aggregate", aggregate, "a genome's fitness from its trials: mean, median, min")
-      ->check(CLI::IsMember({"mean", "median", "min"}))
+      ->check(cli::IsMember({"mean", "median", "min"}))
       ->capture_default_str();
   app.add_option("--seed", settings.seed, "seed of the requests that bring none")
       ->check(ahhs::modules::SeedTextError)
       ->capture_default_str();
   app.add_option("--workers", workers, "local workers (default: one per core; 0: only external)")
-      ->check(CLI::Range(0, 256));
+      ->check(cli::Range(0, 256));
   app.add_option("--arena-kind", arena, "how local workers evaluate: direct, fused or processes")
-      ->check(CLI::IsMember({"direct", "fused", "processes"}))
+      ->check(cli::IsMember({"direct", "fused", "processes"}))
       ->capture_default_str();
   app.add_option("--lcm-url", url, "LCM URL of the farm (ttl=1 to use LAN workers)")
       ->capture_default_str();
   app.add_option("--job-deadline", job_deadline, "seconds before an evaluation is re-issued")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::PositiveNumber)
       ->capture_default_str();
   app.add_option("--worker-wait", worker_wait, "seconds without any worker before a request fails")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::PositiveNumber)
       ->capture_default_str();
   ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine(), ahhs::evolver::FarmVersionLine(),
                                ahhs::evolver::ServiceVersionLine(), ahhs::sim::PhysicsVersionLine(),

@@ -5,7 +5,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -36,6 +35,8 @@
 #include "sim/node/envelope_options.h"
 #include "sim/node/scenario_options.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace ev = ahhs::evolver;
 using Clock = std::chrono::steady_clock;
 
@@ -52,7 +53,7 @@ constexpr int kMaxWorkerRestarts = 20;
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"ahhs-evolve: evolves hormone controllers (the paper's GA) on evaluation workers"};
+  cli::App app{"ahhs-evolve: evolves hormone controllers (the paper's GA) on evaluation workers"};
   ev::EvolveOptions options;
   ev::AddEvolveOptions(app, &options);
   ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine(), ahhs::evolver::FarmVersionLine(),

@@ -5,7 +5,6 @@
 //
 // Fault injection for tests (docs/development.md): AHHS_WORKER_FAULT=nan makes every result a
 // NaN fitness.
-#include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <iostream>
@@ -17,6 +16,8 @@
 #include "evolver/farm/farm_protocol.h"
 #include "sim/core/constants.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace {
 
 std::atomic<bool> g_stop{false};
@@ -25,7 +26,7 @@ void OnSignal(int) { g_stop = true; }
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"ahhs-worker: evaluates genomes for ahhs-evolve runs on this bus"};
+  cli::App app{"ahhs-worker: evaluates genomes for ahhs-evolve runs on this bus"};
   ahhs::evolver::WorkerOptions o;
   o.url = o.arena_url = ahhs::bus::kDefaultLcmUrl;
   ahhs::evolver::AddWorkerOptions(app, &o);

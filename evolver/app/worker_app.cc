@@ -16,6 +16,8 @@
 #include "evolver/farm/arena_evaluator.h"
 #include "evolver/farm/worker_node.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace ahhs::evolver {
 namespace ev = ahhs::evolver;
 namespace {
@@ -48,7 +50,7 @@ std::string PrivateArenaUrl(const std::string& farm_url) {
 
 }  // namespace
 
-void AddWorkerOptions(CLI::App& app, WorkerOptions* o) {
+void AddWorkerOptions(cli::App& app, WorkerOptions* o) {
   const auto wire_text = [](const std::string& text) {
     return ahhs::bus::IsWireText(text)
                ? std::string()
@@ -64,10 +66,10 @@ void AddWorkerOptions(CLI::App& app, WorkerOptions* o) {
   app.add_option("--lcm-url", o->url, "LCM URL of the evaluation farm (ttl=1 to serve a LAN)")
       ->capture_default_str();
   app.add_option("--slots", o->slots, "evaluations at once (one worker process each)")
-      ->check(CLI::Range(1, 256))
+      ->check(cli::Range(1, 256))
       ->capture_default_str();
   app.add_option("--arena-kind", o->arena, "how to evaluate: direct, fused or processes")
-      ->check(CLI::IsMember({"direct", "fused", "processes"}))
+      ->check(cli::IsMember({"direct", "fused", "processes"}))
       ->capture_default_str();
   app.add_option("--arena-url", o->arena_url,
                  "LCM URL of the process arena's own traffic (--arena-kind processes; default: "
@@ -88,7 +90,7 @@ void AddWorkerOptions(CLI::App& app, WorkerOptions* o) {
       });
   app.add_option("--external-timeout", o->external_timeout_s,
                  "seconds an episode waits for the external roles to answer")
-      ->check(CLI::Range(1, 86400))
+      ->check(cli::Range(1, 86400))
       ->capture_default_str();
   app.add_flag("--realtime", o->realtime,
                "episodes at wall-clock pace, for a physical organism (--arena-kind processes)");
@@ -98,7 +100,7 @@ void AddWorkerOptions(CLI::App& app, WorkerOptions* o) {
   app.add_flag("-q,--quiet", o->quiet, "print errors only");
 }
 
-std::string CheckWorkerOptions(const CLI::App& app, WorkerOptions* o) {
+std::string CheckWorkerOptions(const cli::App& app, WorkerOptions* o) {
   if (o->run.empty() && !o->any_run)
     return "say which run to serve: --run RUN_ID (ahhs-evolve prints it) or --any-run";
   if (app.count("--realtime") > 0 && o->arena != "processes")

@@ -2,9 +2,10 @@
 // per slot, or one worker serving farm jobs (docs/evolution.md, docs/protocol.md).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <atomic>
 #include <string>
+
+#include "base/cli.h"
 
 namespace ahhs::evolver {
 
@@ -16,11 +17,11 @@ struct WorkerOptions {
 };
 
 // Declares every option on `app` (`o` holds the defaults).
-void AddWorkerOptions(CLI::App& app, WorkerOptions* o);
+void AddWorkerOptions(base::cli::App& app, WorkerOptions* o);
 
 // After parsing: "" (and --arena-url defaulted to a port of this process's own), or the usage
 // error to print.
-std::string CheckWorkerOptions(const CLI::App& app, WorkerOptions* o);
+std::string CheckWorkerOptions(const base::cli::App& app, WorkerOptions* o);
 
 // --slots N > 1: starts N worker processes and supervises them until `stop`.
 int SuperviseSlots(const WorkerOptions& o, const std::atomic<bool>& stop);

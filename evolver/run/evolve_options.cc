@@ -11,13 +11,15 @@
 #include "base/cli_toml.h"
 #include "modules/core/random.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace ahhs::evolver {
 
-void AddEvolveOptions(CLI::App& app, EvolveOptions* o) {
+void AddEvolveOptions(cli::App& app, EvolveOptions* o) {
   base::AddStrictTomlConfig(app, "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
   o->task.Add(app, "", "episode length, simulated seconds (0: the task's, 60 s gait / 3000 ticks)");
   app.add_option("--variant", o->variant, "controller: ahhs1 or ahhs2")
-      ->check(CLI::IsMember({"ahhs1", "ahhs2"}))
+      ->check(cli::IsMember({"ahhs1", "ahhs2"}))
       ->capture_default_str();
   app.add_option("--hormones", o->hormones, "hormones per controller")->capture_default_str();
   app.add_option("--rules", o->rules, "rules per controller")->capture_default_str();
@@ -33,38 +35,38 @@ void AddEvolveOptions(CLI::App& app, EvolveOptions* o) {
   app.add_option("--mutation-profile", o->mutation_profile,
                  "step of each mutated field: paper (every real field by at most the max change) "
                  "or fine-doses (the first briefing's: AHHS2 doses by 1/50 of it, indices by 1)")
-      ->check(CLI::IsMember({"paper", "fine-doses"}))
+      ->check(cli::IsMember({"paper", "fine-doses"}))
       ->capture_default_str();
   app.add_option("--crossover-rate", o->crossover_rate, "two-point crossover rate")
       ->capture_default_str();
   app.add_option("--trials", o->trials,
                  "episodes per individual and generation, each with a fresh seed (robust "
                  "evolution; the paper: 1)")
-      ->check(CLI::Range(1, kMaxTrials))
+      ->check(cli::Range(1, kMaxTrials))
       ->default_str("1; 3 without --config and --scenario");
   app.add_option("--aggregate", o->aggregate, "an individual's fitness from its trials")
-      ->check(CLI::IsMember({"mean", "median", "min"}))
+      ->check(cli::IsMember({"mean", "median", "min"}))
       ->capture_default_str();
   app.add_option("--post-eval", o->post_eval,
                  "when the run ends, replay its best on N held-out episodes: median, quartiles, "
                  "min and the share that succeeds, also in RUN/post-eval.json")
-      ->check(CLI::Range(0, kMaxPostEval))
+      ->check(cli::Range(0, kMaxPostEval))
       ->default_str("0; 50 without --config and --scenario");
   app.add_option("--validation", o->validation,
                  "when the run ends, choose its best by the median of N validation episodes "
                  "among its --validation-candidates best genomes and its last generation's "
                  "(0: the highest training fitness)")
-      ->check(CLI::Range(0, kMaxValidation))
+      ->check(cli::Range(0, kMaxValidation))
       ->default_str("0; 20 without --config and --scenario");
   app.add_option("--validation-candidates", o->validation_candidates,
                  "how many of the run's best distinct genomes, and of its last generation's, "
                  "the validation compares")
-      ->check(CLI::Range(1, kMaxValidation))
+      ->check(cli::Range(1, kMaxValidation))
       ->capture_default_str();
   app.add_option("--post-eval-envelope", o->post_eval_envelope,
                  "envelope of the held-out episodes (default: the run's, or paper for a run "
                  "without one)")
-      ->check(CLI::IsMember({"none", "paper", "wide"}));
+      ->check(cli::IsMember({"none", "paper", "wide"}));
   o->envelope.Add(app,
                   "envelope of noise every episode is perturbed with: none (the paper), paper or "
                   "wide (docs/scenarios.md); default none, paper without --config and --scenario");
@@ -81,22 +83,22 @@ void AddEvolveOptions(CLI::App& app, EvolveOptions* o) {
                "print the run's configuration as JSON and exit (nothing is created or run)");
   app.add_option("--workers", o->workers,
                  "local worker processes to start (default: one per core; 0: only external)")
-      ->check(CLI::Range(0, 256));
+      ->check(cli::Range(0, 256));
   app.add_option("--arena-kind", o->arena, "how local workers evaluate: direct, fused or processes")
-      ->check(CLI::IsMember({"direct", "fused", "processes"}))
+      ->check(cli::IsMember({"direct", "fused", "processes"}))
       ->capture_default_str();
   app.add_option("--lcm-url", o->url, "LCM URL of the evaluation farm (ttl=1 to use LAN workers)")
       ->capture_default_str();
   app.add_option("--job-deadline", o->job_deadline, "seconds before an evaluation is re-issued")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::PositiveNumber)
       ->capture_default_str();
   app.add_option("--worker-wait", o->worker_wait,
                  "seconds to wait for any worker before giving up (the run stays resumable)")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::PositiveNumber)
       ->capture_default_str();
 }
 
-std::unique_ptr<RunStore> OpenRun(const CLI::App& app, EvolveOptions& o, EvolveConfig* config) {
+std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveConfig* config) {
   std::unique_ptr<RunStore> store;
   if (!o.resume_dir.empty()) {
     for (const char* name : {"--scenario",

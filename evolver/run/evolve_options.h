@@ -2,11 +2,11 @@
 // configuration the options may not change.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <memory>
 #include <string>
 
+#include "base/cli.h"
 #include "bus/lcm_bus.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/farm/farm_evaluator.h"
@@ -43,11 +43,12 @@ struct EvolveOptions {
 };
 
 // Declares every option (and --config, a strict TOML preset) on `app`.
-void AddEvolveOptions(CLI::App& app, EvolveOptions* o);
+void AddEvolveOptions(base::cli::App& app, EvolveOptions* o);
 
 // The run: a new one from the options, or the stored one (--resume). Returns nullptr after
 // --show-config printed the configuration. Throws with a message for the user.
-std::unique_ptr<RunStore> OpenRun(const CLI::App& app, EvolveOptions& o, EvolveConfig* config);
+std::unique_ptr<RunStore> OpenRun(const base::cli::App& app, EvolveOptions& o,
+                                  EvolveConfig* config);
 
 // The farm's options for this run (`wire_run`: the run's name on the bus).
 FarmOptions FarmOptionsFor(const EvolveOptions& o, const EvolveConfig& config,

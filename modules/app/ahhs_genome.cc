@@ -1,5 +1,4 @@
 // ahhs-genome: make, vary, check, read and run hormone-controller genomes from the shell.
-#include <CLI/CLI.hpp>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +13,8 @@
 #include "modules/core/organism.h"
 #include "modules/core/random.h"
 #include "modules/core/variation.h"
+
+namespace cli = ahhs::base::cli;
 
 namespace am = ahhs::modules;
 using nlohmann::json;
@@ -33,7 +34,7 @@ void PrintGenomes(const std::vector<am::Genome>& genomes, const json& meta) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{
+  cli::App app{
       "ahhs-genome: make, vary, check, show and run AHHS hormone-controller genomes.\n"
       "Genome files are JSON (docs/genome.md)."};
   app.require_subcommand(1);
@@ -44,19 +45,19 @@ int main(int argc, char** argv) {
   am::Shape shape{am::Variant::kAhhs2, 5, 30, 4, 1};
   std::uint64_t seed = 1;
   random->add_option("--variant", variant, "ahhs1 or ahhs2")
-      ->check(CLI::IsMember({"ahhs1", "ahhs2"}))
+      ->check(cli::IsMember({"ahhs1", "ahhs2"}))
       ->capture_default_str();
   random->add_option("--hormones", shape.hormones, "number of hormones")
-      ->check(CLI::Range(1, am::Ranges::kMaxHormones))
+      ->check(cli::Range(1, am::Ranges::kMaxHormones))
       ->capture_default_str();
   random->add_option("--rules", shape.rules, "number of rules")
-      ->check(CLI::Range(0, am::Ranges::kMaxRules))
+      ->check(cli::Range(0, am::Ranges::kMaxRules))
       ->capture_default_str();
   random->add_option("--sensors", shape.sensors, "sensor slots per compartment")
-      ->check(CLI::Range(1, am::Ranges::kMaxSlots))
+      ->check(cli::Range(1, am::Ranges::kMaxSlots))
       ->capture_default_str();
   random->add_option("--actuators", shape.actuators, "actuator slots per compartment")
-      ->check(CLI::Range(1, am::Ranges::kMaxSlots))
+      ->check(cli::Range(1, am::Ranges::kMaxSlots))
       ->capture_default_str();
   random->add_option("--seed", seed, "random seed (recorded in the genome's meta)")
       ->check(ahhs::modules::SeedTextError)
@@ -66,18 +67,18 @@ int main(int argc, char** argv) {
       app.add_subcommand("mutate", "Print mutants of a genome (a JSON array when --count > 1)");
   std::string file, file_b;
   int count = 1;
-  mutate->add_option("FILE", file, "genome file")->required()->check(CLI::ExistingFile);
+  mutate->add_option("FILE", file, "genome file")->required()->check(cli::ExistingFile);
   mutate->add_option("--seed", seed, "random seed")
       ->check(ahhs::modules::SeedTextError)
       ->required();
   mutate->add_option("--count", count, "number of independent mutants")
-      ->check(CLI::Range(1, 100000))
+      ->check(cli::Range(1, 100000))
       ->capture_default_str();
   mutate->add_option("--rate", mutation.gene_rate, "mutation probability per gene")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(cli::Range(0.0, 1.0))
       ->capture_default_str();
   mutate->add_option("--max-change", mutation.max_change, "largest change of a real field")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(cli::Range(0.0, 1.0))
       ->capture_default_str();
   bool single_gene = false;
   mutate->add_flag("--single-gene", single_gene,
@@ -85,8 +86,8 @@ int main(int argc, char** argv) {
 
   auto* crossover = app.add_subcommand(
       "crossover", "Print the two children of a two-point crossover (JSON array)");
-  crossover->add_option("A", file, "first parent")->required()->check(CLI::ExistingFile);
-  crossover->add_option("B", file_b, "second parent")->required()->check(CLI::ExistingFile);
+  crossover->add_option("A", file, "first parent")->required()->check(cli::ExistingFile);
+  crossover->add_option("B", file_b, "second parent")->required()->check(cli::ExistingFile);
   crossover->add_option("--seed", seed, "random seed")
       ->check(ahhs::modules::SeedTextError)
       ->required();
@@ -106,12 +107,12 @@ int main(int argc, char** argv) {
   run->add_option("FILE", file, "genome file")->required();
   run->add_option("--compartments", compartments, "compartments docked in a line")
       ->required()
-      ->check(CLI::Range(1, 10000));
+      ->check(cli::Range(1, 10000));
   run->add_option("--sensors", csv,
                   "sensor CSV: tick,compartment,s0,s1,... (empty cell = absent slot)")
       ->required();
   run->add_option("--ticks", ticks, "ticks to run (default: up to the CSV's last tick)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::PositiveNumber);
 
   auto* to_vector = app.add_subcommand(
       "to-vector", "Print a genome as a flat vector of reals with bounds (JSON, docs/genome.md)");

@@ -1,5 +1,4 @@
 // ahhs-module: one module's hormone controller as its own process on the bus.
-#include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -12,23 +11,25 @@
 #include "modules/core/genome_json.h"
 #include "modules/node/module_node.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace {
 std::atomic<bool> g_stop{false};
 void OnSignal(int) { g_stop = true; }
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"ahhs-module: one module's AHHS controller on the bus (docs/protocol.md)"};
+  cli::App app{"ahhs-module: one module's AHHS controller on the bus (docs/protocol.md)"};
   ahhs::modules::ModuleNodeOptions options;
   std::string url = ahhs::bus::kDefaultLcmUrl;
   int timeout_ms = 500;
-  app.add_option("--id", options.id, "module id (0-based)")->required()->check(CLI::Range(0, 9999));
+  app.add_option("--id", options.id, "module id (0-based)")->required()->check(cli::Range(0, 9999));
   app.add_option("--lcm-url", url, "LCM URL")->capture_default_str();
   app.add_option("--arena", options.arena, "arena name: channel prefix")->capture_default_str();
   app.add_option("--hormone-timeout-ms", timeout_ms,
                  "longest wait for neighbours' hormone packets (keep it well below the sim's "
                  "lockstep timeout; 0: wait for every packet, exact lockstep)")
-      ->check(CLI::Range(0, 600000))
+      ->check(cli::Range(0, 600000))
       ->capture_default_str();
   ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine(), ahhs::modules::GenomeFormatLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;

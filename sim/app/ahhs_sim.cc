@@ -3,7 +3,6 @@
 //   --physics none: the episode server of a physical organism (clock and topology only);
 //   standalone mode (--drive): one episode with built-in commands, "fitness: <value>" last.
 // The three modes: sim/app/sim_modes.h.
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <iostream>
 #include <stdexcept>
@@ -17,10 +16,12 @@
 #include "sim/node/envelope_options.h"
 #include "sim/node/scenario_options.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace as = ahhs::sim;
 
 int main(int argc, char** argv) {
-  CLI::App app{
+  cli::App app{
       "ahhs-sim: physics of the gait and pendulum arenas.\n"
       "Without --drive it serves episodes on the bus; with --drive it runs one standalone."};
   std::string url = ahhs::bus::kDefaultLcmUrl;
@@ -34,21 +35,21 @@ int main(int argc, char** argv) {
   app.add_option("--lockstep-timeout-ms", timeout_ms,
                  "bus mode: longest wait for a module's command (0: wait for every command, "
                  "exact lockstep)")
-      ->check(CLI::Range(0, 600000))
+      ->check(cli::Range(0, 600000))
       ->capture_default_str();
   app.add_option("--min-tick-us", min_tick_us,
                  "bus mode, lockstep: at least this many microseconds of wall time per tick")
-      ->check(CLI::Range(0, 10000000))
+      ->check(cli::Range(0, 10000000))
       ->capture_default_str();
   app.add_option(
          "--state-rate", node_options.state_rate,
          "bus mode: SIM/STATE messages per simulated second (0 = once per tick in lockstep, "
          "40 in real time)")
-      ->check(CLI::Range(0.0, 1000.0))
+      ->check(cli::Range(0.0, 1000.0))
       ->capture_default_str();
   app.add_option("--episodes", episodes,
                  "bus mode: exit after this many episodes (0 = serve until killed)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::NonNegativeNumber)
       ->capture_default_str();
   std::string drive = "zero";
   as::ScenarioOptions task;
@@ -68,7 +69,7 @@ int main(int argc, char** argv) {
                  "publishes their SENSORS and their simulated bodies follow the hinge_angle it "
                  "reports (docs/hardware.md)")
       ->delimiter(',')
-      ->check(CLI::Range(0, 32767));
+      ->check(cli::Range(0, 32767));
   std::string physics = "ode";
   as::EpisodeServerOptions server_options;
   int confirm_timeout_s = 600;
@@ -76,14 +77,14 @@ int main(int argc, char** argv) {
   app.add_option("--physics", physics,
                  "bus mode: ode (simulate the organism) or none (episode server of a physical "
                  "organism: clock and topology only, docs/hardware.md)")
-      ->check(CLI::IsMember({"ode", "none"}))
+      ->check(cli::IsMember({"ode", "none"}))
       ->capture_default_str();
   app.add_flag("--no-confirm", no_confirm,
                "--physics none: start each episode without waiting for the operator");
   app.add_option("--confirm-timeout", confirm_timeout_s,
                  "--physics none: seconds to wait for the operator's confirmation before giving "
                  "an episode up")
-      ->check(CLI::Range(1, 86400))
+      ->check(cli::Range(1, 86400))
       ->capture_default_str();
   as::EnvelopeOptions envelope_options;
   envelope_options.Add(app,

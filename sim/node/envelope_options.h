@@ -3,11 +3,11 @@
 // ...) on top of the preset (sim/core/envelope.h, docs/scenarios.md).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <map>
 #include <string>
 
+#include "base/cli.h"
 #include "base/format.h"
 #include "sim/core/envelope.h"
 
@@ -30,15 +30,15 @@ inline std::string EnvelopeArguments(const Envelope& envelope) {
 
 class EnvelopeOptions {
  public:
-  void Add(CLI::App& app, const std::string& preset_help) {
+  void Add(base::cli::App& app, const std::string& preset_help) {
     preset_opt_ = app.add_option("--envelope", preset_, preset_help)
-                      ->check(CLI::IsMember({"none", "paper", "wide"}));
+                      ->check(base::cli::IsMember({"none", "paper", "wide"}));
     for (const auto& k : EnvelopeKeys())
       app.add_option(std::string("--") + k.name, keys_[k.name],
                      std::string(k.help) +
                          " (half-width w, on top of "
                          "--envelope)")
-          ->check(CLI::Range(0.0, 1.0));
+          ->check(base::cli::Range(0.0, 1.0));
     app_ = &app;
   }
   // Whether any envelope option was given.
@@ -60,8 +60,8 @@ class EnvelopeOptions {
   }
 
  private:
-  CLI::App* app_ = nullptr;
-  CLI::Option* preset_opt_ = nullptr;
+  base::cli::App* app_ = nullptr;
+  base::cli::Option* preset_opt_ = nullptr;
   std::string preset_ = "none";
   std::map<std::string, double> keys_;
 };

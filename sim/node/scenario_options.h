@@ -3,10 +3,10 @@
 // same message as the task's own parser ("unknown scenario 'walker' (use gait or pendulum)").
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "base/cli.h"
 #include "sim/core/scenario.h"
 
 namespace ahhs::sim {
@@ -19,7 +19,7 @@ struct ScenarioOptions {
 
   // `context` begins every help text ("with --genome: "); `duration_help` says what the
   // duration means for this tool.
-  void Add(CLI::App& app, const std::string& context, const std::string& duration_help) {
+  void Add(base::cli::App& app, const std::string& context, const std::string& duration_help) {
     app.add_option("--scenario", scenario, context + "gait or pendulum")
         ->check(NameCheck("SCENARIO", [](const std::string& s) { ParseScenarioKind(s); }))
         ->capture_default_str();
@@ -38,8 +38,8 @@ struct ScenarioOptions {
 
  private:
   template <typename Parse>
-  static CLI::Validator NameCheck(const std::string& what, Parse parse) {
-    return CLI::Validator(
+  static base::cli::Validator NameCheck(const std::string& what, Parse parse) {
+    return base::cli::Validator(
         [parse](std::string& value) -> std::string {
           try {
             parse(value);
@@ -50,7 +50,7 @@ struct ScenarioOptions {
         },
         what);
   }
-  CLI::Option* duration_opt_ = nullptr;
+  base::cli::Option* duration_opt_ = nullptr;
 };
 
 }  // namespace ahhs::sim

@@ -8,7 +8,6 @@
 // reply's content), then sends a burst of hinge commands as fast as it can and asks the
 // responder how many arrived. Exit 0 only when every reply was right and nothing was lost, and
 // (udpm://) the bus had its kernel channel filter attached.
-#include <CLI/CLI.hpp>
 #include <ahhs/hinge_command_t.hpp>
 #include <ahhs/hormone_packet_t.hpp>
 #include <ahhs/module_status_t.hpp>
@@ -23,6 +22,8 @@
 #include "base/cli.h"
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
+
+namespace cli = ahhs::base::cli;
 
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
@@ -194,21 +195,21 @@ int Burster(ahhs::bus::Bus& bus, int burst) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Two-process LCM exchange used by the multiprocess bus test"};
+  cli::App app{"Two-process LCM exchange used by the multiprocess bus test"};
   std::string role;
   std::string url;
   int pings = 100;
   int burst = 2000;
   app.add_option("--role", role, "responder or initiator")
       ->required()
-      ->check(CLI::IsMember({"responder", "initiator", "spam", "burst"}));
+      ->check(cli::IsMember({"responder", "initiator", "spam", "burst"}));
   std::string channels;
   double seconds = 1;
   app.add_option("--channels", channels, "spam: comma-separated channels");
   app.add_option("--seconds", seconds, "spam: how long");
   app.add_option("--lcm-url", url, "LCM URL")->required();
-  app.add_option("--pings", pings, "ping-pong round trips")->check(CLI::NonNegativeNumber);
-  app.add_option("--burst", burst, "messages in the burst")->check(CLI::NonNegativeNumber);
+  app.add_option("--pings", pings, "ping-pong round trips")->check(cli::NonNegativeNumber);
+  app.add_option("--burst", burst, "messages in the burst")->check(cli::NonNegativeNumber);
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
   try {
     ahhs::bus::LcmBus bus(url);

@@ -3,7 +3,6 @@
 // the in-process reference fitness of the same genome and seed ("fitness X"), which
 // tests/episode/multiprocess_arena.sh compares with what the sim process reports.
 //   arena_driver --lcm-url URL --scenario S --modules N --duration D --seed S --variant ahhs1|ahhs2
-#include <CLI/CLI.hpp>
 #include <ahhs/module_status_t.hpp>
 #include <ahhs/sim_clock_t.hpp>
 #include <ahhs/sim_control_t.hpp>
@@ -22,11 +21,13 @@
 #include "modules/node/genome_codec.h"
 #include "tests/episode/direct_loop.h"
 
+namespace cli = ahhs::base::cli;
+
 using namespace ahhs;
 using Clock = std::chrono::steady_clock;
 
 int main(int argc, char** argv) {
-  CLI::App app{"launcher stand-in for the multi-process arena test"};
+  cli::App app{"launcher stand-in for the multi-process arena test"};
   std::string url, variant = "ahhs2";
   testing::Episode e{"pendulum", 2, 10.0, 1};
   app.add_option("--lcm-url", url)->required();

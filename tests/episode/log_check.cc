@@ -3,7 +3,6 @@
 // ahhs-replay), SENSORS, HINGE and TRACE.
 //   log_check LOG --arena A --modules N --ticks T [--trace]
 //   log_check LOG --burst-channel CH --ticks T   (hinge commands with ticks 0..T-1, each once)
-#include <CLI/CLI.hpp>
 #include <ahhs/hinge_command_t.hpp>
 #include <ahhs/hormone_packet_t.hpp>
 #include <ahhs/module_sensors_t.hpp>
@@ -16,8 +15,10 @@
 #include "bus/channels.h"
 #include "bus/codec.h"
 
+namespace cli = ahhs::base::cli;
+
 int main(int argc, char** argv) {
-  CLI::App app{"check an episode log"};
+  cli::App app{"check an episode log"};
   std::string path, arena;
   int modules = 0;
   long ticks = 0;

@@ -19,7 +19,6 @@
 // (Correct ones: ahhs-module, examples/controller-lua, examples/firmware-c, examples/tracker-c.)
 //   role_peer --role button --lcm-url URL --arena A --seconds S
 //       an operator's button: SIM/CONTROL CONFIRM once, after S seconds
-#include <CLI/CLI.hpp>
 #include <ahhs/genome_t.hpp>
 #include <ahhs/hinge_command_t.hpp>
 #include <ahhs/hormone_packet_t.hpp>
@@ -43,6 +42,8 @@
 #include "bus/typed.h"
 #include "modules/core/hormone_system.h"
 #include "modules/node/genome_codec.h"
+
+namespace cli = ahhs::base::cli;
 
 using namespace ahhs;
 
@@ -245,17 +246,17 @@ class FaultyModule {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"external-role test peer"};
+  cli::App app{"external-role test peer"};
   std::string role, url, arena;
   int id = 0;
   double seconds = 10;
   app.add_option("--role", role)
       ->required()
-      ->check(CLI::IsMember({"wrong-hash-module", "button", "drifting-firmware", "stale-tracker",
+      ->check(cli::IsMember({"wrong-hash-module", "button", "drifting-firmware", "stale-tracker",
                              "faulty-module", "faulty-server"}));
   std::string fault;
   app.add_option("--fault", fault)
-      ->check(CLI::IsMember({"reset-on-genome", "no-wait", "any-episode"}));
+      ->check(cli::IsMember({"reset-on-genome", "no-wait", "any-episode"}));
   app.add_option("--lcm-url", url)->required();
   app.add_option("--arena", arena)->required();
   app.add_option("--id", id);

@@ -4,7 +4,6 @@
 //   farm_peer --role foreign-evolver --lcm-url URL --worker ID
 //       sends that worker a request of protocol version 99 and prints its answer; exit 0 when
 //       the worker refused it with a message
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <iostream>
 #include <optional>
@@ -16,15 +15,17 @@
 #include "bus/typed.h"
 #include "evolver/farm/farm_codec.h"
 
+namespace cli = ahhs::base::cli;
+
 using namespace ahhs;
 
 int main(int argc, char** argv) {
-  CLI::App app{"evaluation-farm test peer"};
+  cli::App app{"evaluation-farm test peer"};
   std::string role, url, worker;
   double seconds = 5;
   app.add_option("--role", role)
       ->required()
-      ->check(CLI::IsMember({"foreign-worker", "foreign-evolver"}));
+      ->check(cli::IsMember({"foreign-worker", "foreign-evolver"}));
   app.add_option("--lcm-url", url)->required();
   app.add_option("--seconds", seconds);
   app.add_option("--worker", worker);

@@ -1,4 +1,4 @@
-// The strict TOML config reader (bus/cli_toml.h) with options of every kind ahhs-evolve has:
+// The strict TOML config reader (base/cli_toml.h) with options of every kind ahhs-evolve has:
 // any text gives `key = value` items that all name configurable options, or a CLI::ConfigError
 // (a usage error naming the line); nothing else escapes. Accepted items then parse.
 #include <CLI/CLI.hpp>
@@ -11,13 +11,14 @@
 #include "tests/fuzz/fuzz_contract.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  CLI::App app{"fuzz"};
+  ahhs::base::cli::App facade{"fuzz"};
+  CLI::App& app = facade.native();
   std::string scenario = "gait";
   int rules = 30;
   double rate = 0.15;
   std::uint64_t seed = 1;
   bool overwrite = false;
-  ahhs::base::AddStrictTomlConfig(app, "config");
+  ahhs::base::AddStrictTomlConfig(facade, "config");
   app.add_option("--scenario", scenario)->check(CLI::IsMember({"gait", "pendulum"}));
   app.add_option("--rules", rules);
   app.add_option("--mutation-rate", rate);

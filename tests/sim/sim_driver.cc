@@ -3,7 +3,6 @@
 // closed-loop policy; then runs the same policy in-process and prints that run's fitness, which
 // tests/sim/multiprocess_sim.sh compares with the fitness the sim process reports.
 //   sim_driver --lcm-url URL [--scenario pendulum|gait] [--seed S] [--duration D] [--modules N]
-#include <CLI/CLI.hpp>
 #include <ahhs/hinge_command_t.hpp>
 #include <ahhs/module_sensors_t.hpp>
 #include <ahhs/sim_clock_t.hpp>
@@ -17,6 +16,8 @@
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
 #include "sim/core/scenario.h"
+
+namespace cli = ahhs::base::cli;
 
 using namespace ahhs;
 using Clock = std::chrono::steady_clock;
@@ -34,7 +35,7 @@ double Policy(const std::string& scenario, int module, std::int64_t tick, const 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"test driver for a separate ahhs-sim process"};
+  cli::App app{"test driver for a separate ahhs-sim process"};
   std::string url, scenario = "pendulum";
   std::int64_t seed = 1;
   double duration = 5;

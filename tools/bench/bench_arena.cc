@@ -24,6 +24,8 @@
 #include "sim/core/drive.h"
 #include "sim/core/scenario.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace ahhs::bench {
 namespace {
 namespace am = ahhs::modules;
@@ -227,7 +229,7 @@ void BenchArena(const std::string& url, std::uint64_t seed, int repeats) {
 
 }  // namespace
 
-CLI::App* ArenaBench::Add(CLI::App& app) {
+cli::App* ArenaBench::Add(cli::App& app) {
   auto* sub =
       app.add_subcommand("arena", "one gait episode: physics only, fused and multi-process arenas");
   sub->add_option("--lcm-url", url, "URL for the multi-process arena")->capture_default_str();
@@ -235,7 +237,7 @@ CLI::App* ArenaBench::Add(CLI::App& app) {
       ->check(am::SeedTextError)
       ->capture_default_str();
   sub->add_option("--repeats", repeats, "repeats of each (the median is reported)")
-      ->check(CLI::Range(1, 100))
+      ->check(cli::Range(1, 100))
       ->capture_default_str();
   return sub;
 }

@@ -2,9 +2,10 @@
 // watched by ahhs-view, a whole ahhs-launch run).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
+
+#include "base/cli.h"
 
 namespace ahhs::bench {
 
@@ -12,7 +13,7 @@ struct ArenaBench {
   std::string url = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
   std::uint64_t seed = 1;
   int repeats = 3;
-  CLI::App* Add(CLI::App& app);
+  base::cli::App* Add(base::cli::App& app);
   void Run() const;
 };
 

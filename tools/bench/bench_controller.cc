@@ -10,6 +10,8 @@
 #include "modules/core/random.h"
 #include "modules/core/variation.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace ahhs::bench {
 namespace {
 namespace am = ahhs::modules;
@@ -64,13 +66,13 @@ void BenchController(const ControllerCase& c, bool smooth, long ticks, int repea
 
 }  // namespace
 
-CLI::App* ControllerBench::Add(CLI::App& app) {
+cli::App* ControllerBench::Add(cli::App& app) {
   auto* sub = app.add_subcommand("controller", "one compartment tick of the hormone system");
   sub->add_option("--ticks", ticks, "ticks per repeat")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::PositiveNumber)
       ->capture_default_str();
   sub->add_option("--repeats", repeats, "repeats (the median is reported)")
-      ->check(CLI::Range(1, 1000))
+      ->check(cli::Range(1, 1000))
       ->capture_default_str();
   sub->add_option("--seed", seed, "genome seed")->check(am::SeedTextError)->capture_default_str();
   sub->add_option("--only", only, "run only the cases whose name contains this text");

@@ -1,9 +1,10 @@
 // ahhs-bench controller: nanoseconds per compartment tick of the hormone system.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
+
+#include "base/cli.h"
 
 namespace ahhs::bench {
 
@@ -13,7 +14,7 @@ struct ControllerBench {
   std::uint64_t seed = 1;
   std::string only;
   // Declares the subcommand and its options on `app`.
-  CLI::App* Add(CLI::App& app);
+  base::cli::App* Add(base::cli::App& app);
   void Run() const;
 };
 

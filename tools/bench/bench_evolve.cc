@@ -8,6 +8,8 @@
 #include "base/children.h"
 #include "base/temp_files.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace ahhs::bench {
 namespace {
 
@@ -46,24 +48,24 @@ void BenchEvolve(const std::string& name, const std::string& options, int genera
 
 }  // namespace
 
-CLI::App* EvolveBench::Add(CLI::App& app) {
+cli::App* EvolveBench::Add(cli::App& app) {
   auto* sub = app.add_subcommand(
       "evolve", "whole evolution runs at the paper's scale through ahhs-evolve (minutes)");
   sub->add_option("--task", task,
                   "pendulum, gait-damped, gait-fixed, all, or main-job (the README's: ahhs-evolve "
                   "with neither --config nor --scenario, its post-evaluation included; "
                   "--trials and --envelope do not apply)")
-      ->check(CLI::IsMember({"pendulum", "gait-damped", "gait-fixed", "all", "main-job"}))
+      ->check(cli::IsMember({"pendulum", "gait-damped", "gait-fixed", "all", "main-job"}))
       ->capture_default_str();
   sub->add_option("--generations", generations, "generations per run (paper: 200)")
-      ->check(CLI::Range(1, 100000))
+      ->check(cli::Range(1, 100000))
       ->capture_default_str();
   sub->add_option("--workers", workers, "local workers (default: one per core)");
   sub->add_option("--trials", trials, "episodes per individual (robust evolution)")
-      ->check(CLI::Range(1, 64))
+      ->check(cli::Range(1, 64))
       ->capture_default_str();
   sub->add_option("--envelope", envelope, "envelope of noise: none, paper or wide")
-      ->check(CLI::IsMember({"none", "paper", "wide"}))
+      ->check(cli::IsMember({"none", "paper", "wide"}))
       ->capture_default_str();
   sub->add_option("--lcm-url", url, "LCM URL of the farm")->capture_default_str();
   return sub;

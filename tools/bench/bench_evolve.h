@@ -1,8 +1,9 @@
 // ahhs-bench evolve: whole evolution runs through ahhs-evolve, timed from the outside.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <string>
+
+#include "base/cli.h"
 
 namespace ahhs::bench {
 
@@ -10,7 +11,7 @@ struct EvolveBench {
   std::string task = "all", url = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304",
               envelope = "none";
   int generations = 200, workers = -1, trials = 1;
-  CLI::App* Add(CLI::App& app);
+  base::cli::App* Add(base::cli::App& app);
   void Run() const;
 };
 

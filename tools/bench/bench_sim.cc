@@ -11,6 +11,8 @@
 #include "sim/core/gait.h"
 #include "sim/core/scenario.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace ahhs::bench {
 namespace {
 using Clock = std::chrono::steady_clock;
@@ -70,21 +72,21 @@ void BenchSim(const ahhs::sim::ScenarioConfig& config, const char* drive_name, i
 
 }  // namespace
 
-CLI::App* SimBench::Add(CLI::App& app) {
+cli::App* SimBench::Add(cli::App& app) {
   auto* sub = app.add_subcommand("sim", "physics-only episodes with built-in drives");
   sub->add_option("--repeats", repeats, "repeats (the median is reported)")
-      ->check(CLI::Range(1, 1000))
+      ->check(cli::Range(1, 1000))
       ->capture_default_str();
   sub->add_option("--seed", seed, "first episode seed")
       ->check(ahhs::modules::SeedTextError)
       ->capture_default_str();
   sub->add_option("--seeds", seeds, "seeds seed, seed+1, ... (the median over them is reported)")
-      ->check(CLI::Range(1, 1000))
+      ->check(cli::Range(1, 1000))
       ->capture_default_str();
   sub->add_option("--solver", solver,
                   "the gait's solver: chain (this build's physics, sim/core/chain_step.h) or ode "
                   "(ODE's dWorldStep, the same model, the physics of 2026-12-01)")
-      ->check(CLI::IsMember({"ode", "chain"}))
+      ->check(cli::IsMember({"ode", "chain"}))
       ->capture_default_str();
   return sub;
 }

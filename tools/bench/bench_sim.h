@@ -1,9 +1,10 @@
 // ahhs-bench sim: wall time of physics-only episodes with the built-in drives.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
+
+#include "base/cli.h"
 
 namespace ahhs::bench {
 
@@ -12,7 +13,7 @@ struct SimBench {
   std::uint64_t seed = 1;
   int seeds = 1;
   std::string solver = "chain";
-  CLI::App* Add(CLI::App& app);
+  base::cli::App* Add(base::cli::App& app);
   void Run() const;
 };
 

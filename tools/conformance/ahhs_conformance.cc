@@ -8,7 +8,6 @@
 //   TOPOLOGY)
 //   ahhs-conformance vectors --write FILE         the controller's golden vectors, offline
 //   ahhs-conformance vectors --check FILE         (docs/hardware.md, "Golden vectors")
-#include <CLI/CLI.hpp>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -22,6 +21,8 @@
 #include "tools/conformance/module_player.h"
 #include "tools/conformance/player.h"
 #include "tools/conformance/sim_player.h"
+
+namespace cli = ahhs::base::cli;
 
 namespace {
 
@@ -59,7 +60,7 @@ int RunVectors(const std::string& write, const std::string& check) {
 
 int main(int argc, char** argv) {
   namespace ac = ahhs::conformance;
-  CLI::App app{
+  cli::App app{
       "ahhs-conformance: checks a module controller, a firmware, a tracker or an episode server "
       "against the "
       "protocol by playing the roles around it"};
@@ -68,7 +69,7 @@ int main(int argc, char** argv) {
   double budget_ms = 25;
   app.add_option("role", role, "module, firmware, tracker, sim, or vectors (offline)")
       ->required()
-      ->check(CLI::IsMember({"module", "firmware", "tracker", "sim", "vectors"}));
+      ->check(cli::IsMember({"module", "firmware", "tracker", "sim", "vectors"}));
   app.add_option("--arena", options.arena, "the arena the implementation serves");
   std::string write_vectors, check_vectors;
   auto* write_opt = app.add_option("--write", write_vectors,
@@ -77,18 +78,18 @@ int main(int argc, char** argv) {
                  "vectors: check a golden vectors file against modules/core")
       ->excludes(write_opt);
   app.add_option("--id", options.id, "module, firmware: the module under test")
-      ->check(CLI::Range(0, 1000));
+      ->check(cli::Range(0, 1000));
   app.add_option("--modules", options.modules, "tracker: modules it tracks")
-      ->check(CLI::Range(1, 1000));
+      ->check(cli::Range(1, 1000));
   app.add_option("--lcm-url", url, "LCM URL")->capture_default_str();
   app.add_option("--ticks", options.ticks, "firmware, tracker: ticks of the played episode")
-      ->check(CLI::Range(8, 100000))
+      ->check(cli::Range(8, 100000))
       ->capture_default_str();
   app.add_option(
          "--budget-ms", budget_ms,
          "longest time from a tick's last input to the answer (firmware, tracker: SIM/CLOCK; "
          "module: SENSORS and packets); sim: a tick's distance from its schedule")
-      ->check(CLI::Range(1.0, 1000.0))
+      ->check(cli::Range(1.0, 1000.0))
       ->capture_default_str();
   std::uint64_t seed = 1;
   app.add_option("--seed", seed, "module: seed of the genomes, sensor values and packets played")

@@ -3,7 +3,6 @@
 // (inproc://).
 // Prints "fitness: <value>" as its last line. Every child is stopped on success, on error and on
 // Ctrl-C; children also die with the launcher (PR_SET_PDEATHSIG). tools/launch/launch_app.h.
-#include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <iostream>
@@ -14,6 +13,8 @@
 #include "sim/core/constants.h"
 #include "tools/launch/launch_app.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace {
 
 std::atomic<bool> g_interrupted{false};
@@ -22,7 +23,7 @@ void OnSignal(int) { g_interrupted = true; }
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{
+  cli::App app{
       "ahhs-launch: one episode of a genome in an arena of separate processes (or fused into "
       "this one: --arena-kind fused)"};
   ahhs::launch::LaunchOptions o;

@@ -14,25 +14,27 @@
 #include "modules/core/genome_json.h"
 #include "modules/core/random.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace ahhs::launch {
 
 namespace ep = ahhs::episode;
 
-void AddLaunchOptions(CLI::App& app, LaunchOptions* o) {
+void AddLaunchOptions(cli::App& app, LaunchOptions* o) {
   o->task.Add(app, "", "episode length, simulated seconds (default: the task's)");
   app.add_option("--genome", o->genome_file, "genome file (docs/genome.md)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(cli::ExistingFile);
   app.add_option("--seed", o->seed,
                  "episode seed, 0 to 2^64-1 (default: the genome file's stored evaluation seed, "
                  "else 1)")
       ->check(ahhs::modules::SeedTextError);
-  CLI::Option* kind =
+  cli::Option* kind =
       app.add_option("--arena-kind", o->arena_kind,
                      "how the episode runs: processes (one per role, over --lcm-url) or fused "
                      "(every node in this process, on inproc://, or memq:// with --lcm-url "
                      "memq://), as ahhs-evolve's and ahhs-worker's --arena-kind")
-          ->check(CLI::IsMember({"processes", "fused"}))
+          ->check(cli::IsMember({"processes", "fused"}))
           ->capture_default_str();
   // The old flag, for one release: it says what replaced it.
   app.add_flag("--fused", o->fused, "deprecated: use --arena-kind fused")->excludes(kind);
@@ -43,28 +45,28 @@ void AddLaunchOptions(CLI::App& app, LaunchOptions* o) {
   app.add_option("--logger", o->logger,
                  "recorder for --log: ahhs-logger (keeps every message) or lcm-logger (Debian's "
                  "1.3.1 queues only 30 messages and can lose lockstep bursts)")
-      ->check(CLI::IsMember({"ahhs-logger", "lcm-logger"}))
+      ->check(cli::IsMember({"ahhs-logger", "lcm-logger"}))
       ->capture_default_str();
   app.add_option("--lcm-url", o->url,
                  "bus URL: for the processes (default: host-only multicast); with --arena-kind "
                  "fused, inproc:// (default) or memq://");
   app.add_option("--arena", o->arena, "arena name (default: unique per launch)");
   app.add_option("--timeout", o->timeout_s, "give up after this many seconds")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::PositiveNumber)
       ->capture_default_str();
   app.add_option("--lockstep-timeout-ms", o->lockstep_timeout_ms,
                  "longest wait of the sim for a module's command (modules wait a quarter of it for "
                  "their neighbours' packets, so that after a loss they still answer in time); 0: "
                  "exact lockstep, nobody goes on without a message and an episode that stalls "
                  "10 s fails, as in evolution")
-      ->check(CLI::Range(0, 600000))
+      ->check(cli::Range(0, 600000))
       ->capture_default_str();
   app.add_option("--external", o->external,
                  "roles others play (hardware, other languages), not started here: sim, fitness, "
                  "module:N[,M...] or modules, comma-separated (docs/hardware.md); needs --arena");
   app.add_option("--external-timeout", o->external_timeout_s,
                  "seconds to wait for the external roles to answer the handshake")
-      ->check(CLI::Range(1, 86400))
+      ->check(cli::Range(1, 86400))
       ->capture_default_str();
   app.add_option("--hardware-modules", o->hardware_modules,
                  "real time, gait: modules whose bodies are hardware (N[,M...]); the sim follows "
@@ -76,7 +78,7 @@ void AddLaunchOptions(CLI::App& app, LaunchOptions* o) {
       "docs/scenarios.md)");
 }
 
-int SpecFromOptions(const CLI::App& app, LaunchOptions* o, const ahhs::sim::Envelope& envelope,
+int SpecFromOptions(const cli::App& app, LaunchOptions* o, const ahhs::sim::Envelope& envelope,
                     ep::EpisodeSpec* spec, std::string* error) {
   if (app.count("--fused") > 0)
     std::cerr << "ahhs-launch: --fused is deprecated and will go; use --arena-kind fused\n";

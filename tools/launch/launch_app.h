@@ -2,11 +2,11 @@
 // arena (episode/arena).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <atomic>
 #include <cstdint>
 #include <string>
 
+#include "base/cli.h"
 #include "episode/arena/episode.h"
 #include "sim/node/envelope_options.h"
 #include "sim/node/scenario_options.h"
@@ -25,12 +25,13 @@ struct LaunchOptions {
 };
 
 // Declares every option on `app`.
-void AddLaunchOptions(CLI::App& app, LaunchOptions* o);
+void AddLaunchOptions(base::cli::App& app, LaunchOptions* o);
 
 // The episode the options describe (the genome file's stored seed unless --seed): 0, or the exit
 // code with `error` (2: a usage error).
-int SpecFromOptions(const CLI::App& app, LaunchOptions* o, const ahhs::sim::Envelope& envelope,
-                    ahhs::episode::EpisodeSpec* spec, std::string* error);
+int SpecFromOptions(const base::cli::App& app, LaunchOptions* o,
+                    const ahhs::sim::Envelope& envelope, ahhs::episode::EpisodeSpec* spec,
+                    std::string* error);
 
 // Runs the episode; prints what the roles dropped and "fitness: <value>" last. Returns the exit
 // code (130 when `interrupted` stopped it).

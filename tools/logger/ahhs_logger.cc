@@ -9,7 +9,6 @@
 // Stops on SIGINT or SIGTERM, after handling what has already arrived; prints the number of
 // events written to stderr. Exit status 1 for a bad option, an unusable URL, an existing FILE
 // without --force or a write error.
-#include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -18,6 +17,8 @@
 
 #include "base/cli.h"
 #include "bus/wire_version.h"
+
+namespace cli = ahhs::base::cli;
 
 namespace {
 
@@ -58,7 +59,7 @@ class Recorder {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Record LCM traffic into an LCM log file without dropping bursts"};
+  cli::App app{"Record LCM traffic into an LCM log file without dropping bursts"};
   std::string url, channel = ".*", path;
   bool force = false;
   app.add_option("--lcm-url", url, "LCM URL to listen on")->required();

@@ -9,7 +9,6 @@
 // uses the workers' direct arena, so a stored fitness is reproduced to the bit; the output says so,
 // or by how much not. Options: replay_options.h; what is replayed: replay_target.h; the episode
 // and its outputs: replay_run.h.
-#include <CLI/CLI.hpp>
 #include <iostream>
 #include <stdexcept>
 
@@ -21,10 +20,12 @@
 #include "tools/replay/replay_run.h"
 #include "tools/replay/replay_target.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace ar = ahhs::replay;
 
 int main(int argc, char** argv) {
-  CLI::App app{"ahhs-replay: one episode of a stored or given genome, with everything recorded"};
+  cli::App app{"ahhs-replay: one episode of a stored or given genome, with everything recorded"};
   ar::ReplayOptions o;
   ar::AddReplayOptions(app, &o);
   ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine(), ahhs::sim::PhysicsVersionLine(),

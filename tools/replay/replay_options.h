@@ -1,10 +1,10 @@
 // ahhs-replay's command line (docs/analysis.md).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
 
+#include "base/cli.h"
 #include "sim/node/envelope_options.h"
 #include "sim/node/scenario_options.h"
 
@@ -29,6 +29,6 @@ struct ReplayOptions {
 };
 
 // Declares every option on `app`.
-void AddReplayOptions(CLI::App& app, ReplayOptions* o);
+void AddReplayOptions(base::cli::App& app, ReplayOptions* o);
 
 }  // namespace ahhs::replay

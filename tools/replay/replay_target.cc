@@ -11,13 +11,15 @@
 #include "modules/core/genome_json.h"
 #include "modules/core/random.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace ahhs::replay {
 
 namespace ep = ahhs::episode;
 namespace am = ahhs::modules;
 namespace ev = ahhs::evolver;
 
-ReplayTarget ResolveTarget(const CLI::App& app, const ReplayOptions& o,
+ReplayTarget ResolveTarget(const cli::App& app, const ReplayOptions& o,
                            ahhs::sim::Envelope envelope, ahhs::sim::Envelope post_envelope) {
   ReplayTarget t;
   t.post_envelope = post_envelope;

@@ -2,10 +2,10 @@
 // envelope, the physics it was made with and the fitness it stored.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
 
+#include "base/cli.h"
 #include "episode/arena/episode.h"
 #include "modules/core/variation.h"
 #include "sim/core/envelope.h"
@@ -26,7 +26,7 @@ struct ReplayTarget {
 // Resolves the target from the options (`envelope`, `post_envelope`: as the options give them;
 // a run's own envelope replaces them unless envelope options were given). Throws with a
 // message for the user.
-ReplayTarget ResolveTarget(const CLI::App& app, const ReplayOptions& o,
+ReplayTarget ResolveTarget(const base::cli::App& app, const ReplayOptions& o,
                            ahhs::sim::Envelope envelope, ahhs::sim::Envelope post_envelope);
 
 }  // namespace ahhs::replay

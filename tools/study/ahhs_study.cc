@@ -10,7 +10,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
@@ -31,6 +30,8 @@
 #include "sim/core/constants.h"
 #include "tools/study/study_runs.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace fs = std::filesystem;
 namespace at = ahhs::tools;
 using nlohmann::json;
@@ -46,24 +47,24 @@ void OnSignal(int) { g_signals.fetch_add(1); }
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"ahhs-study: many ahhs-evolve runs from a study plan, resumable at any moment"};
+  cli::App app{"ahhs-study: many ahhs-evolve runs from a study plan, resumable at any moment"};
   app.require_subcommand(1);
   std::string plan_file, out_dir, resume_dir, study_dir, export_dir;
   at::RunOptions options;
-  CLI::App* run = app.add_subcommand("run", "run (or resume) a study on this machine");
+  cli::App* run = app.add_subcommand("run", "run (or resume) a study on this machine");
   run->add_option("plan", plan_file, "study plan (TOML, e.g. studies/paper-2010.toml)");
   auto* out = run->add_option("--out", out_dir, "new study directory");
   auto* resume = run->add_option("--resume", resume_dir, "continue the study in this directory");
   out->excludes(resume);
   run->add_option("--parallel", options.parallel, "runs at a time")
-      ->check(CLI::Range(1, 64))
+      ->check(cli::Range(1, 64))
       ->capture_default_str();
   run->add_option("--workers-per-run", options.workers_per_run,
                   "local ahhs-worker processes of each run (default: cores / parallel)")
-      ->check(CLI::Range(1, 256));
+      ->check(cli::Range(1, 256));
   run->add_option("--port-base", options.port_base,
                   "run i of the plan uses LCM port BASE + i (ttl=0), so runs never share workers")
-      ->check(CLI::Range(1024, 60000))
+      ->check(cli::Range(1024, 60000))
       ->capture_default_str();
   run->add_option("--only", options.only,
                   "run only these configurations now (comma-separated names); the others wait")
@@ -71,21 +72,21 @@ int main(int argc, char** argv) {
   run->add_option("--from-export", options.from_export,
                   "take the complete runs of this export (ahhs-study export) instead of running "
                   "them again");
-  CLI::App* status = app.add_subcommand("status", "per run: state, generation, best, ETA");
+  cli::App* status = app.add_subcommand("status", "per run: state, generation, best, ETA");
   status->add_option("study", study_dir, "study directory or export")->required();
-  CLI::App* exp = app.add_subcommand(
+  cli::App* exp = app.add_subcommand(
       "export",
       "copy the complete runs' best genome, generations and summary (what a repository "
       "keeps) into EXPORT");
   exp->add_option("study", study_dir, "study directory")->required();
   exp->add_option("export", export_dir, "export directory (new, or an export of this study)")
       ->required();
-  CLI::App* compact = app.add_subcommand(
+  cli::App* compact = app.add_subcommand(
       "compact",
       "shrink the study's complete runs of run format 1 to format 3 (genomes of every 20th "
       "generation; the others bred again when read), each checked first");
   compact->add_option("study", study_dir, "study directory")->required();
-  CLI::App* submit = app.add_subcommand(
+  cli::App* submit = app.add_subcommand(
       "submit", "submit a study's unfinished runs to a Slurm cluster as one job array");
   at::SlurmOptions slurm;
   bool use_slurm = false;
@@ -101,7 +102,7 @@ int main(int argc, char** argv) {
   submit
       ->add_option("--cpus-per-run", slurm.cpus_per_run,
                    "cores of each array task: its run's local workers")
-      ->check(CLI::Range(1, 256))
+      ->check(cli::Range(1, 256))
       ->capture_default_str();
   submit->add_option("--time", slurm.time, "time limit of each array task (Slurm's format)");
   submit->add_option("--task-wrapper", slurm.task_wrapper,
@@ -110,13 +111,13 @@ int main(int argc, char** argv) {
   submit
       ->add_option("--port-base", submit_options.port_base,
                    "run i of the plan uses LCM port BASE + i (ttl=0) on its node")
-      ->check(CLI::Range(1024, 60000))
+      ->check(cli::Range(1024, 60000))
       ->capture_default_str();
   submit->add_option("--only", submit_options.only, "submit only these configurations")
       ->delimiter(',');
   submit->add_option("--from-export", submit_options.from_export,
                      "take the complete runs of this export instead of running them again");
-  CLI::App* task = app.add_subcommand(
+  cli::App* task = app.add_subcommand(
       "task", "run one run of a submission to its end (what a Slurm array task does)");
   std::string submission;
   int task_index = 0;
@@ -127,12 +128,12 @@ int main(int argc, char** argv) {
       ->required();
   task->add_option("--index", task_index, "array index: line of the submission's runs.txt")
       ->required()
-      ->check(CLI::Range(0, 1000000));
+      ->check(cli::Range(0, 1000000));
   task->add_option("--workers", task_options.workers_per_run, "local ahhs-worker processes")
-      ->check(CLI::Range(1, 256));
+      ->check(cli::Range(1, 256));
   task->add_option("--port-base", task_options.port_base, "as ahhs-study submit's")
-      ->check(CLI::Range(1024, 60000));
-  CLI::App* report = app.add_subcommand(
+      ->check(cli::Range(1024, 60000));
+  cli::App* report = app.add_subcommand(
       "report",
       "compare the configurations of each task and the paper's claims (ahhs-report study): "
       "figures, results.md");
@@ -181,7 +182,7 @@ int main(int argc, char** argv) {
       std::printf("exported %d complete runs to %s\n", n, export_dir.c_str());
       return 0;
     }
-  } catch (const CLI::ValidationError& e) {
+  } catch (const ahhs::base::UsageError& e) {
     std::cerr << "ahhs-study: " << e.what() << '\n';
     return kExitUsage;
   } catch (const at::StudyPlanError& e) {

@@ -3,7 +3,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
@@ -20,6 +19,8 @@
 
 #include "base/cli.h"
 #include "evolver/store/run_store.h"
+
+namespace cli = ahhs::base::cli;
 
 namespace ahhs::tools {
 
@@ -261,10 +262,11 @@ int RunStudy(const StudyDir& study, RunOptions options, const std::atomic<int>& 
 StudyDir OpenOrCreateStudy(const std::string& plan_file, const std::string& out_dir,
                            const std::string& resume_dir) {
   if (resume_dir.empty() == out_dir.empty())
-    throw CLI::ValidationError("give PLAN --out DIR for a new study, or --resume DIR");
+    throw ahhs::base::UsageError("give PLAN --out DIR for a new study, or --resume DIR");
   if (!resume_dir.empty() && !plan_file.empty())
-    throw CLI::ValidationError("--resume takes no plan (the study keeps its own)");
-  if (!out_dir.empty() && plan_file.empty()) throw CLI::ValidationError("a new study needs a PLAN");
+    throw ahhs::base::UsageError("--resume takes no plan (the study keeps its own)");
+  if (!out_dir.empty() && plan_file.empty())
+    throw ahhs::base::UsageError("a new study needs a PLAN");
   if (!resume_dir.empty()) return StudyDir::Open(resume_dir);
   const StudyPlan plan = LoadStudyPlan(plan_file);
   const std::string evolve = ahhs::base::ExecutableDir() + "/ahhs-evolve";

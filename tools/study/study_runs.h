@@ -3,13 +3,13 @@
 // and the Slurm back end (one array task per run). docs/evolution.md, "Studies".
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <atomic>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "base/children.h"
+#include "base/cli.h"
 #include "base/file_lock.h"
 #include "tools/study/study_dir.h"
 
@@ -37,7 +37,7 @@ nlohmann::json ResolveConfig(const std::string& evolve, const std::string& confi
 base::FileLock LockStudy(const std::string& dir);
 
 // `PLAN --out DIR` makes a new study (its configurations resolved by ahhs-evolve), `--resume
-// DIR` opens one; anything else is a usage error (CLI::ValidationError).
+// DIR` opens one; anything else is a usage error (base::UsageError).
 StudyDir OpenOrCreateStudy(const std::string& plan_file, const std::string& out_dir,
                            const std::string& resume_dir);
 

@@ -6,7 +6,6 @@
 //   ahhs-view LOG.lcm --video out.mp4        an H.264 video, rendered by headless Chromium
 //   ahhs-view LOG.lcm --filmstrip out.png    8 frames across the episode in one PNG
 // Options: view_options.h; what is shown and how pages are fed: view_session.h.
-#include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -22,6 +21,8 @@
 #include "tools/view/view_session.h"
 #include "tools/view/web_server.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace av = ahhs::view;
 
 namespace {
@@ -32,7 +33,7 @@ void OnSignal(int) { g_stop = true; }
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"ahhs-view: watch an arena, a log or an evolving run in a browser (docs/viewer.md)"};
+  cli::App app{"ahhs-view: watch an arena, a log or an evolving run in a browser (docs/viewer.md)"};
   av::ViewOptions o;
   o.lcm_url = ahhs::bus::kDefaultLcmUrl;
   o.web_root = ahhs::base::DataDir() + "/web";

@@ -7,10 +7,12 @@
 #include "base/cli.h"
 #include "tools/view/access_policy.h"
 
+namespace cli = ahhs::base::cli;
+
 namespace ahhs::view {
 namespace av = ahhs::view;
 
-void AddViewOptions(CLI::App& app, ViewOptions* o) {
+void AddViewOptions(cli::App& app, ViewOptions* o) {
   app.add_option("log", o->log_file, "an LCM log to play (ahhs-launch --log, ahhs-replay --log)");
   app.add_option("--lcm-url", o->lcm_url, "follow a live arena on this bus");
   app.add_option("--arena", o->arena, "the arena to show (default: AHHS live, the first in a log)");
@@ -25,33 +27,33 @@ void AddViewOptions(CLI::App& app, ViewOptions* o) {
                  "localhost, [::1] and --bind are always allowed")
       ->check([](const std::string& name) { return av::AccessPolicy::CheckName(name); });
   app.add_option("--max-pages", o->max_pages, "pages that may watch at once")
-      ->check(CLI::Range(1, 64))
+      ->check(cli::Range(1, 64))
       ->capture_default_str();
   app.add_option("--port", o->port, "HTTP port, 0 for any free one")
-      ->check(CLI::Range(0, 65535))
+      ->check(cli::Range(0, 65535))
       ->capture_default_str();
   app.add_option("--rate", o->rate, "live: at most this many updates per second to the page")
-      ->check(CLI::Range(1.0, 1000.0))
+      ->check(cli::Range(1.0, 1000.0))
       ->capture_default_str();
   app.add_option("--hormones", o->hormones,
                  "the three hormones shown as red, green and blue (module colours)")
       ->capture_default_str();
   app.add_option("--poll", o->poll, "--run: seconds between looks at the run")
-      ->check(CLI::Range(0.1, 3600.0))
+      ->check(cli::Range(0.1, 3600.0))
       ->capture_default_str();
   app.add_option("--video", o->video,
                  "with a log: write an H.264 MP4 of its first episode and exit");
   app.add_option("--filmstrip", o->filmstrip,
                  "with a log: write N frames across it as one PNG and exit");
   app.add_option("--frames", o->frames, "frames of --filmstrip")
-      ->check(CLI::Range(1, 32))
+      ->check(cli::Range(1, 32))
       ->capture_default_str();
   app.add_option("--from", o->from, "--video: start, simulated seconds")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(cli::Range(0.0, 1e6));
   app.add_option("--to", o->to, "--video: end, simulated seconds (default: the episode's end)")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(cli::Range(0.0, 1e6));
   app.add_option("--fps", o->fps, "--video: frames per second of simulated time")
-      ->check(CLI::Range(1, 60))
+      ->check(cli::Range(1, 60))
       ->capture_default_str();
   app.add_option("--size", o->size, "--video, --filmstrip: frame size WIDTHxHEIGHT")
       ->capture_default_str();
@@ -59,7 +61,7 @@ void AddViewOptions(CLI::App& app, ViewOptions* o) {
   app.add_option("--web-root", o->web_root, "the page's folder")->capture_default_str();
 }
 
-std::string CheckViewOptions(const CLI::App& app, ViewOptions* o, nlohmann::json* hormone_list) {
+std::string CheckViewOptions(const cli::App& app, ViewOptions* o, nlohmann::json* hormone_list) {
   o->live = app.count("--lcm-url") > 0;
   const int modes = !o->log_file.empty() + o->live + !o->run_dir.empty();
   if (modes != 1) return "give one of LOG, --lcm-url URL or --run RUN_DIR";

@@ -1,10 +1,11 @@
 // ahhs-view's command line (docs/viewer.md).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "base/cli.h"
 
 namespace ahhs::view {
 
@@ -20,9 +21,9 @@ struct ViewOptions {
 };
 
 // Declares every option on `app` (`o` holds the defaults, the page's folders included).
-void AddViewOptions(CLI::App& app, ViewOptions* o);
+void AddViewOptions(base::cli::App& app, ViewOptions* o);
 
 // After parsing: "" and the three hormones shown (`hormones`), or the usage error to print.
-std::string CheckViewOptions(const CLI::App& app, ViewOptions* o, nlohmann::json* hormones);
+std::string CheckViewOptions(const base::cli::App& app, ViewOptions* o, nlohmann::json* hormones);
 
 }  // namespace ahhs::view

@@ -52,9 +52,11 @@ function(ahhs_add_script_test)
   set_tests_properties(${ARG_NAME} PROPERTIES
     LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT} SKIP_RETURN_CODE ${AHHS_SKIP_RETURN_CODE}
     ENVIRONMENT "AHHS_SOURCE_DIR=${PROJECT_SOURCE_DIR};AHHS_BINARY_DIR=${PROJECT_BINARY_DIR}")
-  # Real processes over real sockets run alone: on a loaded 2-core machine an unpaced lockstep
-  # episode outruns lcm-logger and the kernel's socket buffers.
+  # Tests of real processes over real sockets run one at a time: two unpaced lockstep arenas at
+  # once on a 2-core machine outran lcm-logger and the kernel's socket buffers. One of them may
+  # run beside a test of one process (a lock, not RUN_SERIAL): most of these tests wait on
+  # sockets and lockstep and leave a core idle.
   if("multiprocess" IN_LIST ARG_LABELS OR "lan" IN_LIST ARG_LABELS OR "chaos" IN_LIST ARG_LABELS)
-    set_tests_properties(${ARG_NAME} PROPERTIES RUN_SERIAL TRUE)
+    set_tests_properties(${ARG_NAME} PROPERTIES RESOURCE_LOCK ahhs_processes)
   endif()
 endfunction()

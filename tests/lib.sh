@@ -14,7 +14,7 @@ fail() {
 
 # Also gives the test a process group of its own: CTest runs every test in CTest's own group, so
 # without this `pgrep -g "$pg"` and the cleanup would reach the processes of any test running
-# beside it (unit tests do; multiprocess ones are RUN_SERIAL). setsid does not fork here (under
+# beside it (unit tests do; multiprocess ones hold a lock against each other only). setsid does not fork here (under
 # CTest the test is not a group leader); run by hand from a shell, the test already leads its own
 # group and keeps it, so Ctrl-C still reaches it.
 ahhs_netns() {

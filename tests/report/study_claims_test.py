@@ -44,58 +44,111 @@ def rows(configs, stat="best"):
 
 
 rng = np.random.default_rng(1)
-# The paper's pendulum: AHHS2-15 clearly better, same speed.
+SPEED = "Pendulum: evolution speed (runs reaching 75 % of the maximum, and when)"
+BETTER = "Pendulum: AHHS2-15 is better than AHHS1-60"
+# The paper's pendulum: AHHS2-15 clearly better, same speed. Ten against eight runs without ties:
+# the exact rank-sum p, 2 / C(18, 8).
 r = rows([config("pendulum-ahhs2-15", list(0.6 + 0.01 * rng.random(10)), [5] * 10),
           config("pendulum-ahhs1-60", list(0.3 + 0.01 * rng.random(8)), [5] * 8)])
-assert r["Pendulum: AHHS2-15 is better than AHHS1-60"][1] == "reproduced", r
-assert r["Pendulum: evolution speed (generation reaching 75 % of the maximum)"][1] == "reproduced"
-# Ours so far: the opposite.
+assert r[BETTER][1] == "reproduced (n = 10, 8)", r
+assert r[BETTER][0].endswith(f"p = {2 / 43758:.3g}"), r[BETTER]
+assert r[SPEED][1] == "reproduced (n = 10, 8)", r[SPEED]
+assert r[SPEED][0].startswith("10 of 10 AHHS2-15 runs reach it, median generation of those 5"), r
+# Ours so far: the opposite, significantly; then the paper's direction without significance.
 r = rows([config("pendulum-ahhs2-15", list(0.3 + 0.01 * rng.random(10))),
           config("pendulum-ahhs1-60", list(0.6 + 0.01 * rng.random(10)))])
-assert r["Pendulum: AHHS2-15 is better than AHHS1-60"][1] == "opposite: AHHS1-60 is better", r
+assert r[BETTER][1] == "differs, reversed: AHHS1-60 is higher (n = 10, 10)", r
+r = rows([config("pendulum-ahhs2-15", [0.5, 0.52, 0.3, 0.61, 0.45]),
+          config("pendulum-ahhs1-60", [0.49, 0.51, 0.31, 0.6, 0.44])])
+assert r[BETTER][1] == "not significant (n = 5, 5)", r
+# Speed is a time to an event: a run that never reaches 75 % is censored, not counted as fast
+# or slow at its length. All AHHS2-15 runs reach it by generation 20, no AHHS1-60 run does.
+a = config("pendulum-ahhs2-15", [0.6] * 6, [10, 12, 14, 16, 18, 20])
+b = config("pendulum-ahhs1-60", [0.6] * 6, [200] * 6, reached=[False] * 6)
+r = rows([a, b])
+assert r[SPEED][1] == "differs: significant difference (n = 6, 6)", r[SPEED]
+assert "0 of 6 AHHS1-60 runs reach it;" in r[SPEED][0], r[SPEED]
 # Too few runs: no verdict. No runs: not run yet.
 r = rows([config("pendulum-ahhs2-15", [0.5, 0.6]), config("pendulum-ahhs1-60", [0.1, 0.2])])
-claim = r["Pendulum: AHHS2-15 is better than AHHS1-60"]
+claim = r[BETTER]
 assert claim[1] == "open" and "too few complete runs" in claim[0], claim
 r = rows([config("pendulum-ahhs2-15", [])])
-assert r["Pendulum: AHHS2-15 is better than AHHS1-60"] == (
-    "not run yet (pendulum-ahhs2-15, pendulum-ahhs1-60)", "open"), r
+assert r[BETTER] == ("not run yet (pendulum-ahhs2-15, pendulum-ahhs1-60)", "open"), r
 # Fixed docking: 11 of 20 AHHS2-50 runs at 1.4 or more (55 %) against a maximum of 1.75.
 r = rows([config("gait-fixed-ahhs2-50", [1.4] * 10 + [1.75] + [0.5] * 9)])
 ours, verdict = r["Fixed gait: share of AHHS2-50 runs within 80 % of the maximum"]
-assert verdict == "close" and ours.startswith("55% of 20 runs >= 1.36"), ours
-# AHHS1-20 significantly below the other two, which do not differ: reproduced.
-low, high = list(0.2 + 0.01 * rng.random(10)), lambda: list(1.0 + 0.5 * rng.random(10))
-r = rows([config("gait-fixed-ahhs1-20", low), config("gait-fixed-ahhs1-80", high()),
-          config("gait-fixed-ahhs2-50", high()), config("gait-fixed-ahhs2-20", [0.1] * 6)])
-assert r["Fixed gait: AHHS1-20 differs significantly from AHHS1-80 and from AHHS2-50"][1] == \
-    "reproduced", r
-assert r["Fixed gait: AHHS2-20 performs badly"][1] == "reproduced", r
-# Damped: AHHS1 varies more; no significant difference.
-r = rows([config("gait-damped-ahhs2-30", list(1.0 + 0.1 * rng.random(10))),
-          config("gait-damped-ahhs1-120", list(0.6 + 0.9 * rng.random(10)))])
-assert r["Damped gait: AHHS1 runs vary more"][1] == "reproduced", r
+assert verdict == "close (n = 20)" and ours.startswith("55% of 20 runs >= 1.36"), ours
+# AHHS1-20 significantly below the other two; no other pair differs: reproduced. AHHS2-20 has the
+# lowest median but the highest run, and its runs never reach 75 % of the maximum.
+LOW = "Fixed gait: AHHS1-20 is below AHHS1-80 and below AHHS2-50, significantly"
+OTHERS = "Fixed gait: no other pair of settings differs significantly"
+LOWEST = "Fixed gait: AHHS2-20 has the lowest best fitness"
+SLOWEST = "Fixed gait: AHHS2-20 evolves slowest (runs reaching 75 % of the maximum, and when)"
+high = lambda: list(1.0 + 0.5 * rng.random(10))
+low = config("gait-fixed-ahhs1-20", list(0.9 + 0.2 * rng.random(10)), [30] * 10)
+fixed = [low, config("gait-fixed-ahhs1-80", high(), [20] * 10),
+         config("gait-fixed-ahhs2-50", high(), [25] * 10),
+         config("gait-fixed-ahhs2-20", [0.5, 0.6, 0.7, 0.8, 1.6, 2.0], [200] * 6,
+                reached=[False] * 5 + [True])]
+r = rows(fixed)
+assert r[LOW][1] == "reproduced (n = 10, 10, 10)", r[LOW]
+assert r[OTHERS][1] == "reproduced (n = 10, 10, 10, 6)", r[OTHERS]
+assert r[LOWEST][1] == "reproduced (in the median) (n = 10, 10, 10, 6)", r[LOWEST]
+assert r[LOWEST][0].endswith("yet AHHS2-20 holds the highest run (2.000)"), r[LOWEST]
+assert r[SLOWEST][1] == "reproduced (n = 10, 10, 10, 6)", r[SLOWEST]
+assert "1 of 6 AHHS2-20 runs reach it, median generation of those 200" in r[SLOWEST][0], r
+assert "significantly slower than AHHS1-20, AHHS1-80, AHHS2-50" in r[SLOWEST][0], r[SLOWEST]
+# Ours: AHHS1-20 above AHHS1-80 (the reverse), level with AHHS2-50.
+fixed[0] = config("gait-fixed-ahhs1-20", [2.0 + 0.02 * i for i in range(10)])
+fixed[1] = config("gait-fixed-ahhs1-80", list(1.0 + 0.1 * rng.random(10)))
+fixed[2] = config("gait-fixed-ahhs2-50", [2.01 + 0.02 * i for i in range(10)])
+r = rows(fixed)
+assert r[LOW][1].startswith("differs (against AHHS1-80: differs, reversed: AHHS1-20 is higher; "
+                            "against AHHS2-50: not significant"), r[LOW]
+assert r[OTHERS][1].startswith("differs: ") and "AHHS1-80 vs AHHS2-50 (p = " in r[OTHERS][1], r
+assert "AHHS1-80 vs AHHS2-20" not in r[OTHERS][1], r[OTHERS]  # p = 0.31: not named
+# Damped: the compound claim in two parts; "high" is over the wall (fitness > 1).
+HIGH = "Damped gait: high fitness in every setting (each median over the wall, fitness > 1)"
+SAME = "Damped gait: AHHS2-30 and AHHS1-120 do not differ significantly"
+VARIES = ("Damped gait: an AHHS1 controller's fitness varies more from episode to episode "
+          "(interquartile range of each run's best genome)")
+damped = [config("gait-damped-ahhs2-30", list(1.0 + 0.1 * rng.random(10)), spread=[0.05] * 10,
+                 spread_source="50 held-out episodes"),
+          config("gait-damped-ahhs1-120", list(1.02 + 0.1 * rng.random(10)),
+                 spread=list(0.3 + 0.1 * rng.random(10)))]
+r = rows(damped)
+assert r[HIGH][1] == "reproduced (n = 10, 10)", r[HIGH]
+assert r[SAME][1] == "reproduced (n = 10, 10)", r[SAME]
+assert r[VARIES][1] == "reproduced (n = 10, 10)", r[VARIES]
+assert "over 50 held-out episodes" in r[VARIES][0], r[VARIES]
+# Per-genome spreads alike: not significant, whatever the spread of the runs' bests.
+damped[1].spread = [0.0455 + 0.001 * i for i in range(10)]
+assert rows(damped)[VARIES][1].startswith("not significant"), rows(damped)[VARIES]
+damped[1].spread = None
+assert rows(damped)[VARIES][1] == "open", rows(damped)[VARIES]
 # The robust pass judges the same claims on each run's robust fitness: here the AHHS1 bests are
 # knife-edges (high bests, low robust fitness), so the robust verdicts turn round.
 bests = lambda lo: list(lo + 0.1 * rng.random(6))
 damped = [config("gait-damped-ahhs2-30", bests(0.6), robust=np.array(bests(0.55))),
           config("gait-damped-ahhs1-120", bests(2.5), robust=np.array(bests(0.3)))]
 r, rr = rows(damped), rows(damped, "robust")
-claim = "Damped gait: high fitness in every setting, no significant difference"
-assert r[claim][1] == rr[claim][1] == "differs: significant difference", (r, rr)
-assert "medians 0.6" in r[claim][0] and "vs 2.5" in r[claim][0], r[claim]
-assert "medians 0.5" in rr[claim][0] and "vs 0.3" in rr[claim][0], rr[claim]
+assert r[SAME][1] == "differs: AHHS1-120 is significantly higher (n = 6, 6)", r[SAME]
+assert rr[SAME][1] == "differs: AHHS2-30 is significantly higher (n = 6, 6)", rr[SAME]
+assert "medians 0.6" in r[SAME][0] and "vs 2.5" in r[SAME][0], r[SAME]
+assert "medians 0.5" in rr[SAME][0] and "vs 0.3" in rr[SAME][0], rr[SAME]
+assert r[HIGH][1] == "differs: AHHS2-30 at or before the wall (median <= 1) (n = 6, 6)", r[HIGH]
+assert rr[HIGH][1].startswith("differs: AHHS2-30 and AHHS1-120 at or before the wall"), rr[HIGH]
 pend = [config("pendulum-ahhs2-15", bests(0.3), robust=np.array(bests(0.6))),
         config("pendulum-ahhs1-60", bests(0.6), robust=np.array(bests(0.3)))]
 r, rr = rows(pend), rows(pend, "robust")
-assert r["Pendulum: AHHS2-15 is better than AHHS1-60"][1] == "opposite: AHHS1-60 is better", r
-assert rr["Pendulum: AHHS2-15 is better than AHHS1-60"][1] == "reproduced", rr
+assert r[BETTER][1] == "differs, reversed: AHHS1-60 is higher (n = 6, 6)", r
+assert rr[BETTER][1] == "reproduced (n = 6, 6)", rr
 # Evolution speed is not about runs' fitness: judged once, an empty robust row.
-assert rr["Pendulum: evolution speed (generation reaching 75 % of the maximum)"] == (None, None)
+assert rr[SPEED] == (None, None)
 # A configuration without robust fitness (its replays failed) gives no robust verdict.
 pend[0].robust = None
 rr = rows(pend, "robust")
-assert rr["Pendulum: AHHS2-15 is better than AHHS1-60"][1] == "open", rr
+assert rr[BETTER][1] == "open", rr
 # The robust pass measures "within 80 % of our maximum" against the highest robust fitness.
 fixed = [config("gait-fixed-ahhs2-50", [3.0] * 5 + [1.0] * 5, robust=np.array([0.5] * 9 + [0.6])),
          config("gait-fixed-ahhs1-80", [1.0] * 10, robust=np.array([0.3] * 10))]
@@ -104,6 +157,12 @@ assert ours == ("0% of 10 runs >= 1.36 (80 % of 1.7); "
                 "100% within 80 % of our highest robust fitness 0.600"), ours
 ours = rows(fixed)["Fixed gait: share of AHHS2-50 runs within 80 % of the maximum"][0]
 assert ours.endswith("50% within 80 % of our maximum 3.000"), ours
+# Every verdict that is not "open" names its n.
+names = ("pendulum-ahhs2-15", "pendulum-ahhs1-60", "gait-damped-ahhs2-30", "gait-damped-ahhs1-120",
+         "gait-fixed-ahhs1-20", "gait-fixed-ahhs1-80", "gait-fixed-ahhs2-50", "gait-fixed-ahhs2-20")
+everything = [config(n, list(0.5 + rng.random(6)), spread=list(rng.random(6))) for n in names]
+for claim, (ours, verdict) in rows(everything).items():
+    assert verdict is None or verdict == "open" or "(n = " in verdict, (claim, verdict)
 # Both passes have the same claims in the same order; merged, six columns.
 maxima = {"pendulum": 0.7}
 merged = sr.merge_claims(make_claims(pend, maxima), make_claims(pend, maxima, "robust"))

@@ -121,9 +121,40 @@ class Run:
 
 
 def rank_sum_test(x, y):
-    """Two-sided Wilcoxon rank-sum test; returns (U of x, p). Exact when scipy can be."""
-    result = stats.mannwhitneyu(x, y, alternative="two-sided", method="auto")
-    return float(result.statistic), float(result.pvalue)
+    """Two-sided Wilcoxon rank-sum test; returns (U of x, p). Exact (the permutation
+    distribution of U) when the pooled sample has no ties; with ties, the normal approximation
+    with the tie correction and a continuity correction, as R's wilcox.test."""
+    tied = len(set(map(float, x)) | set(map(float, y))) < len(x) + len(y)
+    result = stats.mannwhitneyu(x, y, alternative="two-sided",
+                                method="asymptotic" if tied else "exact")
+    p = float(result.pvalue)
+    # Every value the same: no evidence of a difference (the approximation divides by zero).
+    return float(result.statistic), p if math.isfinite(p) else 1.0
+
+
+def logrank_test(times_a, reached_a, times_b, reached_b):
+    """Log-rank test of two groups of times to an event (Mantel's form; Kalbfleisch & Prentice):
+    a time whose event did not happen (reached False) is censored there. Returns (observed
+    events of a, expected events of a under no difference, two-sided p from chi-square with 1
+    degree of freedom); p is None when no event happened at all."""
+    a = [(float(t), bool(e)) for t, e in zip(times_a, reached_a)]
+    b = [(float(t), bool(e)) for t, e in zip(times_b, reached_b)]
+    observed = expected = variance = 0.0
+    for t in sorted({t for t, e in a + b if e}):
+        n_a = sum(1 for s, _ in a if s >= t)
+        n_b = sum(1 for s, _ in b if s >= t)
+        d_a = sum(1 for s, e in a if e and s == t)
+        d = d_a + sum(1 for s, e in b if e and s == t)
+        n = n_a + n_b
+        observed += d_a
+        expected += d * n_a / n
+        if n > 1:
+            variance += d * (n_a / n) * (n_b / n) * (n - d) / (n - 1)
+    if not any(e for _, e in a + b):
+        return observed, expected, None
+    if variance == 0:  # every event at one time, and every run had it: no difference to see
+        return observed, expected, 1.0
+    return observed, expected, float(stats.chi2.sf((observed - expected) ** 2 / variance, 1))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -10,7 +10,9 @@ seed-<k>/summary.json), in the plan's order (study.toml), and writes into OUT_DI
   results.json     the numbers behind results.md
 Every run's best genome is replayed once (rule activity, hormones in use, and whether this build
 reproduces its stored fitness bit for bit) and 8 times with perturbed frictions (ahhs-replay
---robustness): its robust fitness is the median of those 8.
+--robustness). Its robust fitness is the median of its post-evaluation (held-out episodes under
+the run's envelope, in summary.json) when every run of the configuration has one, else of those
+8 replays; the interquartile range of the same episodes is its spread.
 Each claim about runs' fitness is judged twice: on each run's best fitness (the paper's
 statistic) and on the robust fitness of each run's best, since an evolved gait best is often a
 knife-edge of deterministic chaos (docs/scenarios.md).
@@ -26,7 +28,7 @@ from collections import OrderedDict
 
 import numpy as np
 
-from claims_lib import fmt, merge_claims
+from claims_lib import VERDICTS, fmt, merge_claims
 from report_lib import (ReportError, Run, UsageError, box_figure, find_bin, prepare_out,
                         rule_edges, rule_parts, run_replay)
 from run_report import report_neighbourhood, report_runs
@@ -42,8 +44,12 @@ class Config:
         self.task = runs[0].task if runs else None
         self.best = np.array([r.best_overall() for r in runs])
         self.robust = None  # per run: robust fitness of its best genome (None: a run has none)
+        self.robust_source = ""  # what the robust fitness is the median of
+        self.spread = None  # per run: interquartile range of its best genome's robust episodes
+        self.spread_source = ""
         self.controllers = []  # per run: rule and hormone use of its best genome
-        self.speed = []  # per run: the generation reaching 75 % of the task's maximum
+        self.speed = []  # per run: the generation reaching 75 % of the task's maximum, or its length
+        self.reached = []  # per run: whether it reached that level (else censored at its length)
         self.robustness = None  # of the configuration's best genome
         self.robustness_runs = []  # per run: ahhs-replay --robustness of its best genome
         self.neighbourhood = None
@@ -115,7 +121,46 @@ def robustness_of(bin_dir, run, scratch):
     values = [float(v) for v in rows["fitness"] if v != "failed"]
     return {"replays": len(rows), "failed": len(rows) - len(values),
             "median": float(np.median(values)) if values else None,
-            "max": float(np.max(values)) if values else None}
+            "max": float(np.max(values)) if values else None,
+            "iqr": iqr(values) if len(values) > 1 else None}
+
+
+def iqr(values):
+    return float(np.subtract(*np.percentile(values, [75, 25])))
+
+
+def post_eval_of(run):
+    """A run's post-evaluation (ahhs-evolve --post-eval: held-out episodes of its best genome)
+    from its summary: {"median", "iqr", "episodes"}, or None when it has none."""
+    if not os.path.isfile(os.path.join(run.path, "summary.json")):
+        return None
+    post = summary_of(run).get("post_eval")
+    if not post or not post.get("per_episode"):
+        return None
+    values = [float(e["fitness"]) for e in post["per_episode"]
+              if isinstance(e.get("fitness"), (int, float))]
+    if len(values) < 2:
+        return None
+    return {"median": float(np.median(values)), "iqr": iqr(values), "episodes": len(values),
+            "envelope": post.get("envelope", "")}
+
+
+def robust_fitness(config):
+    """Sets the configuration's robust fitness and per-genome spread: from every run's
+    post-evaluation when all have one, else from the friction replays (robustness_runs)."""
+    post = [post_eval_of(r) for r in config.runs]
+    if post and all(p is not None for p in post):
+        config.robust = np.array([p["median"] for p in post])
+        config.spread = [p["iqr"] for p in post]
+        episodes = sorted({p["episodes"] for p in post})
+        config.robust_source = config.spread_source = (
+            f"{'-'.join(map(str, episodes))} held-out episodes (envelope {post[0]['envelope']})")
+        return
+    medians = [x["median"] for x in config.robustness_runs]
+    config.robust = None if None in medians else np.array(medians)
+    spreads = [x.get("iqr") for x in config.robustness_runs]
+    config.spread = None if None in spreads else spreads
+    config.robust_source = config.spread_source = f"{ROBUSTNESS} friction-perturbed replays"
 
 
 def neighbourhood_of(bin_dir, config, out_dir):
@@ -170,9 +215,10 @@ def report_study(args):
     for c in done:
         tasks.setdefault(c.task, []).append(c)
     maxima = {t: float(max(np.max(c.best) for c in cs)) for t, cs in tasks.items()}
-    for c in done:  # the paper's evolution speed; a run that never gets there counts its length
-        c.speed = [r.first_generation_reaching(0.75 * maxima[c.task]) for r in c.runs]
-        c.speed = [int(r.generation[-1]) + 1 if g is None else g for r, g in zip(c.runs, c.speed)]
+    for c in done:  # the paper's evolution speed; a run that never gets there is censored
+        speed = [r.first_generation_reaching(0.75 * maxima[c.task]) for r in c.runs]
+        c.reached = [g is not None for g in speed]
+        c.speed = [int(r.generation[-1]) + 1 if g is None else g for r, g in zip(c.runs, speed)]
     for task, cs in tasks.items():
         report_runs(argparse.Namespace(runs=[r for c in cs for r in c.runs],
                                        out=os.path.join(args.out, task), overwrite=True,
@@ -182,8 +228,7 @@ def report_study(args):
             c.controllers = [controller_use(bin_dir, r, scratch) for r in c.runs]
             c.robustness_runs = [robustness_of(bin_dir, r, scratch) for r in c.runs]
             c.robustness = c.robustness_runs[int(np.argmax(c.best))]
-            medians = [x["median"] for x in c.robustness_runs]
-            c.robust = None if None in medians else np.array(medians)
+            robust_fitness(c)
             if not args.no_replay:
                 c.neighbourhood = neighbourhood_of(
                     bin_dir, c, os.path.join(args.out, c.task, f"neighbourhood-{c.name}"))
@@ -192,7 +237,7 @@ def report_study(args):
         if robust:
             box_figure({c.name: c.runs for c in robust}, {c.name: list(c.robust) for c in robust},
                        "robust fitness of the run's best", "Robust fitness of each run's best "
-                       "genome (median of 8 replays, friction x 0.975-1.025), Wilcoxon rank-sum",
+                       f"genome (median of {robust[0].robust_source}), Wilcoxon rank-sum",
                        "box_robust", os.path.join(args.out, task), [])
     make_claims = claims_of(name)
     claims = merge_claims(make_claims(configs, maxima, "best"),
@@ -219,6 +264,23 @@ def reproduction(configs):
             differ)
 
 
+def reaching(c):
+    """"7 of 10 (40)": runs reaching the speed level, and the median generation of those."""
+    gens = [g for g, hit in zip(c.speed, c.reached) if hit]
+    return f"{len(gens)} of {len(c.speed)}" + (f" ({np.median(gens):g})" if gens else "")
+
+
+def robust_sources(configs):
+    """What each configuration's robust fitness is the median of, in words."""
+    sources = OrderedDict()
+    for c in configs:
+        if c.runs and c.robust_source:
+            sources.setdefault(c.robust_source, []).append(c.name)
+    if len(sources) <= 1:
+        return "the median of " + (next(iter(sources)) if sources else "its replays")
+    return "the median of " + "; ".join(f"{s} ({', '.join(n)})" for s, n in sources.items())
+
+
 def write_results(args, name, configs, tasks, maxima, claims):
     complete = sum(len(c.runs) for c in configs)
     planned = sum(c.planned for c in configs)
@@ -232,24 +294,27 @@ def write_results(args, name, configs, tasks, maxima, claims):
           "configurations have no complete run yet says so.", "", replayed, "",
           "## The paper's claims", "",
           "Judged twice: on each run's best fitness (the paper's statistic), and on the robust "
-          "fitness of each run's best genome (the median of 8 replays with the friction scaled "
-          "0.975-1.025). Claims that are not about runs' fitness are judged once.", "",
+          "fitness of each run's best genome (" + robust_sources(configs) + "). Claims that are "
+          "not about runs' fitness are judged once. The verdicts:", ""] + [
+              f"- {v}" for v in VERDICTS] + ["",
           "| claim | the paper | ours: each run's best | verdict | ours: robust | "
           "verdict (robust) |",
           "|---|---|---|---|---|---|"]
     md += [f"| {a} | {b} | {c} | {d} | {'-' if e is None else e} | {'-' if f is None else f} |"
            for a, b, c, d, e, f in claims]
     md += ["", "## Configurations", "",
-           "Best fitness is each run's best (the paper's statistic). Robust: a best genome "
-           "replayed with the friction scaled 0.975-1.025 (8 replays, median), for the "
-           "configuration's best and for each run's; an evolved gait best is usually far above "
+           "Best fitness is each run's best (the paper's statistic). Robust median of the max: "
+           "the configuration's best genome replayed with the friction scaled 0.975-1.025 (8 "
+           "replays, median). Robust fitness of the runs' bests: " + robust_sources(configs) +
+           "; an evolved gait best is usually far above "
            "it (docs/findings.md, \"Physics step and deterministic chaos\"). Rules: share of the "
            "rules of the runs' best genomes that "
            "never or seldom (< 1 % of ticks) trigger; hormones: touched by a rule part active in "
            ">= 1 % of ticks (median over runs).", "",
            "| configuration | runs | best fitness: median (quartiles) | max | robust median of the max | "
            "robust fitness of the runs' bests: median (quartiles) | "
-           "within 80 % of the task's maximum | generation to 75 %: median | rules never/seldom | "
+           "within 80 % of the task's maximum | runs reaching 75 % of it (median generation of those) | "
+           "rules never/seldom | "
            "hormones used |",
            "|---|---|---|---|---|---|---|---|---|---|"]
     results = {"study": name, "complete_runs": complete, "planned_runs": planned,
@@ -267,13 +332,15 @@ def write_results(args, name, configs, tasks, maxima, claims):
         md.append(f"| {c.name} | {len(c.runs)} of {c.planned} | {med:.3f} ({q1:.3f} / {q3:.3f}) | "
                   f"{np.max(c.best):.3f} | {fmt(c.robustness['median'])} | {robust} | "
                   f"{within:.0%} | "
-                  f"{np.median(c.speed):g} | {quiet:.0%} | "
+                  f"{reaching(c)} | {quiet:.0%} | "
                   f"{hormones:g} of {c.controllers[0]['hormones']} |")
         results["configs"][c.name] = {
             "runs": len(c.runs), "planned": c.planned, "task": c.task,
             "best": [float(v) for v in c.best], "median": float(med),
-            "within_80_percent": within, "speed": c.speed, "robustness": c.robustness,
+            "within_80_percent": within, "speed": c.speed, "reached": c.reached,
+            "robustness": c.robustness, "robust_source": c.robust_source,
             "robust": None if c.robust is None else [float(v) for v in c.robust],
+            "spread": c.spread,
             "robustness_runs": c.robustness_runs,
             "neighbourhood": c.neighbourhood, "controllers": c.controllers}
     md += ["", "## Figures", ""]

@@ -163,6 +163,17 @@ names = ("pendulum-ahhs2-15", "pendulum-ahhs1-60", "gait-damped-ahhs2-30", "gait
 everything = [config(n, list(0.5 + rng.random(6)), spread=list(rng.random(6))) for n in names]
 for claim, (ours, verdict) in rows(everything).items():
     assert verdict is None or verdict == "open" or "(n = " in verdict, (claim, verdict)
+# Mutation neighbourhoods from several originals, their mutants pooled; judged once.
+NB = "Mutation neighbourhood of a good AHHS1 controller (35 single mutants each)"
+nb = {"originals": [{"run": "x/seed-3", "original": 0.84, "robust": 0.79},
+                    {"run": "x/seed-1", "original": 0.9, "robust": 0.83}],
+      "mutants": 70, "median": 0.15, "below_0.2": 0.6, "keep_90": 0.2}
+c80 = config("gait-fixed-ahhs1-80", [1.0] * 6, neighbourhood=nb)
+r, rr = rows([c80]), rows([c80], "robust")
+assert r[NB] == ("originals 0.840 (robust 0.790), 0.900 (robust 0.830); mutants' median 0.150; "
+                 "60 % below 0.2, 20 % keep 90 % of their original",
+                 "reproduced (n = 2 originals, 70 mutants)"), r[NB]
+assert rr[NB] == (None, None), rr[NB]
 # Both passes have the same claims in the same order; merged, six columns.
 maxima = {"pendulum": 0.7}
 merged = sr.merge_claims(make_claims(pend, maxima), make_claims(pend, maxima, "robust"))

@@ -1,20 +1,14 @@
 #!/usr/bin/env bash
-# ahhs-replay and ahhs-report on small real runs made here (inside a private network namespace):
-# the replay reproduces the stored fitness and records every tick in an LCM log; every figure of
-# the report exists and is not empty; bad input gives a clear message and a non-zero exit.
-bin=${1:?usage: report_test.sh BIN_DIR}
+# ahhs-replay and ahhs-report on the small real runs of the report:runs fixture (in a private
+# network namespace of its own): the replay reproduces the stored fitness and records every tick
+# in an LCM log; every figure of the report exists and is not empty; bad input gives a clear
+# message and a non-zero exit.
+bin=${1:?usage: report_test.sh BIN_DIR RUNS_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_netns "$0" "$@"
-url="udpm://239.255.42.80:7771?ttl=0&recv_buf_size=4194304"
-# Processes of this test only: its process group (never a run of the same build elsewhere).
-ahhs_scratch 'ahhs-evolve|ahhs-worker'
-E="$bin/ahhs-evolve"
-common="--population 8 --generations 4 --lcm-url $url --workers 2"
-for seed in 1 2 3; do
-  $E --scenario pendulum --variant ahhs2 --hormones 6 --rules 8 --duration 5.25 --seed $seed $common --out $tmp/a2-$seed >/dev/null 2>&1 || fail "run a2-$seed"
-  $E --scenario pendulum --variant ahhs1 --hormones 6 --rules 12 --duration 5.25 --seed $seed $common --out $tmp/a1-$seed >/dev/null 2>&1 || fail "run a1-$seed"
-done
-$E --scenario gait --hormones 3 --rules 8 --duration 3 --seed 1 $common --out $tmp/gait >/dev/null 2>&1 || fail "gait run"
+runs=${2:?usage: report_test.sh BIN_DIR RUNS_DIR (report:runs makes it)}
+ahhs_scratch 'ahhs-replay|ahhs-logger'
+cp -r "$runs"/. $tmp/ || fail "no runs in $runs (the report:runs fixture makes them)"
 
 echo "== ahhs-replay reproduces stored fitness"
 for r in a2-1 a1-2 gait; do
@@ -42,7 +36,7 @@ grep -Eq "reproduced exactly|in the changed physics \(--physics-step, --friction
 "$bin/ahhs-replay" $tmp/a2-1 --mutants 3 --mutants-csv $tmp/mutants.csv >/dev/null 2>&1 || fail "replay --mutants"
 [[ $(wc -l <$tmp/mutants.csv) == 5 ]] || fail "mutants.csv: $(cat $tmp/mutants.csv)"
 
-if ! ci_tier_only "ahhs-report (figures, neighbourhood, steps, the random genomes' table)"; then
+if ! ci_tier_only "ahhs-report (figures)"; then
 echo "== ahhs-report"
 "$bin/ahhs-report" $tmp/a2-{1,2,3} $tmp/a1-{1,2,3} $tmp/gait -o $tmp/report >$tmp/report.out 2>&1 ||
   { cat $tmp/report.out; fail "ahhs-report"; }
@@ -75,40 +69,6 @@ mkdir $tmp/mine && echo x >$tmp/mine/notes.txt
 [[ $rc == 2 ]] && grep -q "a2-1.lcm exists; pass --overwrite" $tmp/out || fail "replay --log over a file: $rc $(cat $tmp/out)"
 "$bin/ahhs-replay" $tmp/a2-1 --log $tmp/a2-1.lcm --overwrite >/dev/null 2>&1 || fail "replay --log --overwrite"
 
-echo "== neighbourhood"
-"$bin/ahhs-report" neighbourhood $tmp/a2-1 --mutants 6 -o $tmp/nb >$tmp/nb.out 2>&1 || { cat $tmp/nb.out; fail "neighbourhood"; }
-[[ -s $tmp/nb/neighbourhood.png && -s $tmp/nb/neighbourhood.svg && -s $tmp/nb/controller.png ]] || fail "neighbourhood figures"
-[[ $(wc -l <$tmp/nb/mutants.csv) == 8 ]] || fail "mutants.csv: $(cat $tmp/nb/mutants.csv)"
-"$bin/ahhs-genome" random --variant ahhs1 --hormones 4 --rules 6 --sensors 10 --actuators 2 --seed 3 >$tmp/g.json
-"$bin/ahhs-report" neighbourhood $tmp/g.json --scenario pendulum --duration 5 --mutants 3 -o $tmp/nb2 >/dev/null 2>&1 || fail "neighbourhood of a genome file"
-[[ -s $tmp/nb2/neighbourhood.png ]] || fail "neighbourhood of a genome file: figure"
-
-echo "== steps: the physics step judged by post-evaluated distributions"
-knife=$AHHS_SOURCE_DIR/tests/episode/data/knife-edge-damped-ahhs1-120.json
-"$bin/ahhs-report" steps $knife --episodes 2 --jobs 2 -o $tmp/steps >$tmp/steps.out 2>&1 ||
-  { cat $tmp/steps.out; fail "steps"; }
-# One row per step, the task's step (6.25 ms) and twice it judged against half of it.
-[[ $(grep -c "knife-edge" $tmp/steps/steps.csv) == 3 ]] || fail "steps.csv: $(cat $tmp/steps/steps.csv)"
-grep -q "^| genome | 3.125 ms: median (quartiles), over the wall | 6.25 ms: " $tmp/steps/summary.md &&
-  grep -Eq "^- 6.25 ms: (passes|does not pass)$" $tmp/steps/summary.md &&
-  grep -Eq "^- 12.5 ms: (passes|does not pass)$" $tmp/steps/summary.md || fail "steps summary: $(cat $tmp/steps/summary.md)"
-# With a named physics; each verdict with the paired bootstrap interval of the difference.
-"$bin/ahhs-report" steps $knife --episodes 3 --jobs 2 --physics 2026-12-04 -o $tmp/steps3 >$tmp/steps3.out 2>&1 ||
-  { cat $tmp/steps3.out; fail "steps --physics"; }
-grep -q "damped docking, physics 2026-12-04, at 3.125 ms" $tmp/steps3/summary.md &&
-  grep -Eq "\((agrees|differs); [+-][0-9.]+ to [+-][0-9.]+\)" $tmp/steps3/summary.md ||
-  fail "steps --physics: $(cat $tmp/steps3/summary.md)"
-"$bin/ahhs-report" steps $tmp/nothing.json -o $tmp/steps2 >$tmp/err 2>&1 && fail "steps of a missing genome"
-grep -q "no such genome file or run directory" $tmp/err && ! grep -q Traceback $tmp/err ||
-  fail "steps of a missing genome: $(cat $tmp/err)"
-
-echo "== the random pendulum genomes of docs/results.md (1 per setting)"
-"$AHHS_SOURCE_DIR/studies/paper-2010-random-genomes.py" "$bin" --count 1 >$tmp/random.md 2>&1 ||
-  fail "random genomes: $(cat $tmp/random.md)"
-# A header, a rule and seven settings, each with 1 genome scored.
-[[ $(grep -c "^| .* | [01] of 1 | " $tmp/random.md) == 7 && $(wc -l <$tmp/random.md) == 9 ]] ||
-  fail "random genomes table: $(cat $tmp/random.md)"
-
 fi
 
 echo "== bad input"
@@ -123,6 +83,4 @@ grep -q Traceback $tmp/err && fail "a traceback instead of a message"
 grep -q "not a readable run database" $tmp/err || fail "replay corrupt message: $(cat $tmp/err)"
 "$bin/ahhs-replay" $tmp/a2-1 --generation 99 >$tmp/err 2>&1 && fail "replay of a missing generation"
 grep -q "is not stored" $tmp/err || fail "missing generation message: $(cat $tmp/err)"
-"$bin/ahhs-report" neighbourhood $tmp/nothing.json -o $tmp/x >$tmp/err 2>&1 && fail "missing genome accepted"
-grep -q "no such genome file" $tmp/err || fail "missing genome message: $(cat $tmp/err)"
 echo "PASS"

@@ -19,6 +19,12 @@ echo "== neighbourhood"
 "$bin/ahhs-genome" random --variant ahhs1 --hormones 4 --rules 6 --sensors 10 --actuators 2 --seed 3 >$tmp/g.json
 "$bin/ahhs-report" neighbourhood $tmp/g.json --scenario pendulum --duration 5 --mutants 3 -o $tmp/nb2 >/dev/null 2>&1 || fail "neighbourhood of a genome file"
 [[ -s $tmp/nb2/neighbourhood.png ]] || fail "neighbourhood of a genome file: figure"
+# With the physics a genome was evolved with (the first study's damped docking, dWorldStep): its
+# original is its stored fitness to the last digit printed.
+knife=$AHHS_SOURCE_DIR/tests/episode/data/knife-edge-damped-ahhs1-120.json
+"$bin/ahhs-report" neighbourhood $knife --scenario gait --joints damped --seed 295761112068970292 \
+  --physics 2026-12-01.2 --mutants 1 -o $tmp/nb3 >$tmp/nb3.out 2>&1 || { cat $tmp/nb3.out; fail "neighbourhood --physics"; }
+grep -q "^original,2.7359187058763337," $tmp/nb3/mutants.csv || fail "neighbourhood --physics: $(cat $tmp/nb3/mutants.csv)"
 
 echo "== steps: the physics step judged by post-evaluated distributions"
 knife=$AHHS_SOURCE_DIR/tests/episode/data/knife-edge-damped-ahhs1-120.json

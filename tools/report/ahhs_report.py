@@ -48,6 +48,9 @@ def main(argv):
         p.add_argument("--modules", type=int, default=5)
         p.add_argument("--duration", type=float, default=0)
         p.add_argument("--seed", type=int, default=1, help="episode seed (genome files)")
+        p.add_argument("--physics", default="",
+                       help="the physics version to replay with (genome files; default this "
+                            "build's, as ahhs-replay --physics)")
         p.add_argument("-o", "--out", required=True)
         p.add_argument("--overwrite", action="store_true", help="replace a report in --out")
         p.add_argument("--bin", help="directory of ahhs-replay")

@@ -114,6 +114,8 @@ def report_neighbourhood(args):
         argv = ["--genome", args.genome, "--scenario", args.scenario, "--joints", args.joints,
                 "--modules", str(args.modules), "--duration", str(args.duration),
                 "--seed", str(args.seed)]
+        if getattr(args, "physics", ""):
+            argv += ["--physics", args.physics]
         genome_path = args.genome
     rules = os.path.join(args.out, "rules.csv")
     body = os.path.join(args.out, "body.csv")

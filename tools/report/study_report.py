@@ -190,10 +190,11 @@ def neighbourhood_of(bin_dir, config, out_dir):
         args = argparse.Namespace(genome=run.path, mutants=MUTANTS, mutant_seed=1, out=sub,
                                   overwrite=True, bin=bin_dir, scenario=run.config["scenario"],
                                   joints=run.config["joints"], modules=run.config["modules"],
-                                  duration=float(run.config["duration"]), seed=1)
-        if run.exported:
+                                  duration=float(run.config["duration"]), seed=1, physics="")
+        if run.exported:  # its best genome, episode seed and physics (Run.replay_argv)
             args.genome = os.path.join(run.path, "best.json")
             args.seed = int(summary_of(run)["best_eval_seed"])
+            args.physics = run.physics
         report_neighbourhood(args)
         data = np.genfromtxt(os.path.join(sub, "mutants.csv"), delimiter=",", names=True,
                              dtype=None, encoding="utf-8")

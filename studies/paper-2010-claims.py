@@ -37,7 +37,7 @@ def pendulum(c):
     claim = "Pendulum: AHHS2-15 is better than AHHS1-60"
     paper = "yes, Wilcoxon p < 0.05 (n = 10 AHHS2, 8 AHHS1)"
     if not c.missing(claim, paper, a, b):
-        verdict, p = c.higher(a, b, "AHHS2-15", "AHHS1-60")
+        verdict, p = c.higher(a, b, "AHHS1-60")
         c.add(claim, paper, f"medians {c.median(a):.3f} (AHHS2-15) vs {c.median(b):.3f} "
               f"(AHHS1-60), p = {fmt(p)}", verdict, (a, b))
     claim = "Pendulum: evolution speed (runs reaching 75 % of the maximum, and when)"
@@ -78,7 +78,7 @@ def damped(c):
         if any(s is None or len(s) < 2 for s in spread.values()):
             c.add(claim, paper, "no per-genome spread (a best genome's replays failed)", "open")
         else:
-            verdict, p = c.higher(b, a, "AHHS1-120", "AHHS2-30", values=spread)
+            verdict, p = c.higher(b, a, "AHHS2-30", values=spread)
             source = getattr(c.get(a), "spread_source", "episodes")
             c.add(claim, paper, f"median interquartile range {np.median(spread[b]):.3f} "
                   f"(AHHS1-120) vs {np.median(spread[a]):.3f} (AHHS2-30) over {source}, "
@@ -108,7 +108,7 @@ def fixed(c, maxima):
     if not c.missing(claim, paper, low, *high):
         parts, ours = [], []
         for h in high:
-            verdict, p = c.higher(h, low, label(h), "AHHS1-20")
+            verdict, p = c.higher(h, low, "AHHS1-20")
             ours.append(f"{label(h)} {c.median(h):.3f} vs AHHS1-20 {c.median(low):.3f}, "
                         f"p = {fmt(p)}")
             if verdict != "reproduced":

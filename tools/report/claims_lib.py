@@ -67,7 +67,7 @@ class Claims:
             verdict = f"{verdict} ({self.n(*names)})"
         self.rows.append((claim, paper, ours, verdict))
 
-    def higher(self, a, b, label_a, label_b, values=None):
+    def higher(self, a, b, label_b, values=None):
         """The verdict on "a is higher than b" (the paper: significantly), with p: reproduced,
         differs, reversed, or not significant (in which direction)."""
         x, y = (self.values(a), self.values(b)) if values is None else (values[a], values[b])

@@ -42,9 +42,12 @@ function(ahhs_add_catch_test)
   endforeach()
 endfunction()
 
-# ahhs_add_script_test(NAME name COMMAND ... LABELS ... [TIMEOUT s])
+# ahhs_add_script_test(NAME name COMMAND ... LABELS ... [TIMEOUT s] [COST s] [PACED])
+# COST: about how many seconds it runs; CTest starts the costliest tests first (a fresh clone has
+# no timings of its own). PACED: its processes run in real time or wait on timeouts (a tenth of
+# a core or less), so it needs no lock against the others (below).
 function(ahhs_add_script_test)
-  cmake_parse_arguments(ARG "" "NAME;TIMEOUT" "COMMAND;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "PACED" "NAME;TIMEOUT;COST" "COMMAND;LABELS" ${ARGN})
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 300)
   endif()
@@ -52,11 +55,15 @@ function(ahhs_add_script_test)
   set_tests_properties(${ARG_NAME} PROPERTIES
     LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT} SKIP_RETURN_CODE ${AHHS_SKIP_RETURN_CODE}
     ENVIRONMENT "AHHS_SOURCE_DIR=${PROJECT_SOURCE_DIR};AHHS_BINARY_DIR=${PROJECT_BINARY_DIR}")
+  if(ARG_COST)
+    set_tests_properties(${ARG_NAME} PROPERTIES COST ${ARG_COST})
+  endif()
   # Tests of real processes over real sockets run one at a time: two unpaced lockstep arenas at
   # once on a 2-core machine outran lcm-logger and the kernel's socket buffers. One of them may
-  # run beside a test of one process (a lock, not RUN_SERIAL): most of these tests wait on
-  # sockets and lockstep and leave a core idle.
-  if("multiprocess" IN_LIST ARG_LABELS OR "lan" IN_LIST ARG_LABELS OR "chaos" IN_LIST ARG_LABELS)
+  # run beside a test of one process or a paced one (a lock, not RUN_SERIAL): most of these
+  # tests wait on sockets and lockstep and leave a core idle.
+  if(NOT ARG_PACED AND ("multiprocess" IN_LIST ARG_LABELS OR "lan" IN_LIST ARG_LABELS OR
+                        "chaos" IN_LIST ARG_LABELS))
     set_tests_properties(${ARG_NAME} PROPERTIES RESOURCE_LOCK ahhs_processes)
   endif()
 endfunction()

@@ -23,7 +23,9 @@ namespace ahhs::episode {
 
 namespace fs = std::filesystem;
 
-namespace {
+// Named, not anonymous: EpisodeRecorder::Files holds these, and a class with linkage must not
+// hold a type of an anonymous namespace (GCC's -Wsubobject-linkage, in a unity build).
+namespace recorder_files {
 
 // An LCM log written to a temporary name and moved into place when complete.
 class LogWriter {
@@ -66,7 +68,9 @@ class LogWriter {
 
 using TextWriter = base::AtomicTextFile;
 
-}  // namespace
+}  // namespace recorder_files
+using recorder_files::LogWriter;
+using recorder_files::TextWriter;
 
 class EpisodeRecorder::Files {
  public:

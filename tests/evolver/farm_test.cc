@@ -51,7 +51,7 @@ struct Batch {
   }
 };
 
-FarmOptions Options() {
+FarmOptions FastFarm() {
   FarmOptions o;
   o.run = "test-run/s1";
   o.config.kind = sim::ScenarioKind::kPendulum;
@@ -84,7 +84,7 @@ TEST_CASE("one or three workers give the same results as evaluating in place") {
       CHECK(total == 30);
       last_progress = done;
     };
-    FarmEvaluator farm(&bus, Options(), hooks);
+    FarmEvaluator farm(&bus, FastFarm(), hooks);
     Batch batch(30);
     const auto results = farm.Evaluate(batch.jobs);
     batch.CheckResults(results);
@@ -115,7 +115,7 @@ TEST_CASE("a worker that returns NaN gets its jobs re-issued elsewhere, and it i
     return false;
   };
   hooks.report = [&](const std::string& s) { reports.push_back(s); };
-  FarmEvaluator farm(&bus, Options(), hooks);
+  FarmEvaluator farm(&bus, FastFarm(), hooks);
   Batch batch(12);
   const auto results = farm.Evaluate(batch.jobs);
   batch.CheckResults(results);
@@ -142,7 +142,7 @@ TEST_CASE("a worker that dies mid-batch: its jobs are re-issued, results unchang
     steady.Poll(std::chrono::microseconds(0));
     return false;
   };
-  FarmEvaluator farm(&bus, Options(), hooks);
+  FarmEvaluator farm(&bus, FastFarm(), hooks);
   Batch batch(20);
   batch.CheckResults(farm.Evaluate(batch.jobs));
   CHECK(dying.counters().evaluations == 2);
@@ -180,7 +180,7 @@ TEST_CASE("foreign protocol versions, garbage and other runs' results are ignore
     return false;
   };
   hooks.report = [&](const std::string& s) { reports.push_back(s); };
-  FarmEvaluator farm(&bus, Options(), hooks);
+  FarmEvaluator farm(&bus, FastFarm(), hooks);
   Batch batch(10);
   batch.CheckResults(farm.Evaluate(batch.jobs));
   CHECK(farm.counters().results.dropped > 0);
@@ -220,7 +220,7 @@ TEST_CASE("a worker refuses a request of another protocol version and says why")
 TEST_CASE("without any worker the farm gives up with a clear error, Ctrl-C interrupts", "[wall]") {
   bus::LcmBus bus("memq://");
   {
-    FarmEvaluator farm(&bus, Options(), {});
+    FarmEvaluator farm(&bus, FastFarm(), {});
     Batch batch(3);
     CHECK_THROWS_WITH(farm.Evaluate(batch.jobs), Catch::Contains("no evaluation worker"));
   }
@@ -228,7 +228,7 @@ TEST_CASE("without any worker the farm gives up with a clear error, Ctrl-C inter
     FarmEvaluator::Hooks hooks;
     int loops = 0;
     hooks.interrupted = [&] { return ++loops > 5; };
-    FarmEvaluator farm(&bus, Options(), hooks);
+    FarmEvaluator farm(&bus, FastFarm(), hooks);
     Batch batch(3);
     CHECK_THROWS_AS(farm.Evaluate(batch.jobs), FarmInterrupted);
   }
@@ -399,7 +399,7 @@ TEST_CASE("every farm message fits one datagram and each genome goes out once pe
     for (auto& w : workers) w->Poll(std::chrono::microseconds(0));
     return false;
   };
-  FarmEvaluator farm(&bus, Options(), hooks);
+  FarmEvaluator farm(&bus, FastFarm(), hooks);
   BigBatch batch(6);
   batch.genomes[5] = batch.genomes[4];  // an elite twice: its genome still goes out once
   const auto results = farm.Evaluate(batch.jobs);
@@ -431,7 +431,7 @@ TEST_CASE("workers that lose pieces ask for them and give the same results, with
     for (auto& w : workers) w->Poll(std::chrono::microseconds(0));
     return false;
   };
-  FarmOptions options = Options();
+  FarmOptions options = FastFarm();
   options.piece_resend = std::chrono::milliseconds(10);
   FarmEvaluator farm(&bus, options, hooks);
   BigBatch batch(8);

@@ -8,7 +8,7 @@ using std::chrono::milliseconds;
 
 namespace {
 
-LeaseOptions Options() {
+LeaseOptions FastLeases() {
   LeaseOptions o;
   o.job_deadline = milliseconds(1000);
   o.worker_silence = milliseconds(500);
@@ -23,7 +23,7 @@ const FarmClock::time_point t0{};
 }  // namespace
 
 TEST_CASE("jobs go to live workers up to slots + prefetch, lowest job first") {
-  LeaseTable t(Options());
+  LeaseTable t(FastLeases());
   for (int j = 0; j < 10; ++j) t.AddJob(j);
   CHECK(t.Schedule(t0).empty());  // nobody to give them to
   t.OnWorkerStatus("a", 1, {}, 0, t0);
@@ -37,7 +37,7 @@ TEST_CASE("jobs go to live workers up to slots + prefetch, lowest job first") {
   CHECK(std::count_if(d.begin(), d.end(), [](const Dispatch& x) { return x.worker == "b"; }) == 3);
   CHECK(t.Schedule(t0).empty());  // all full
   // A worker busy with another run's jobs has less room.
-  LeaseTable u(Options());
+  LeaseTable u(FastLeases());
   u.AddJob(0);
   u.AddJob(1);
   u.OnWorkerStatus("c", 1, {}, 2, t0);
@@ -45,7 +45,7 @@ TEST_CASE("jobs go to live workers up to slots + prefetch, lowest job first") {
 }
 
 TEST_CASE("a result frees the slot, duplicates and unknown jobs are ignored") {
-  LeaseTable t(Options());
+  LeaseTable t(FastLeases());
   t.AddJob(0);
   t.AddJob(1);
   t.AddJob(2);
@@ -62,7 +62,7 @@ TEST_CASE("a result frees the slot, duplicates and unknown jobs are ignored") {
 }
 
 TEST_CASE("an expired lease is re-issued with the next attempt, the first valid result wins") {
-  LeaseTable t(Options());
+  LeaseTable t(FastLeases());
   t.AddJob(0);
   t.OnWorkerStatus("a", 1, {}, 0, t0);
   REQUIRE(t.Schedule(t0).size() == 1);
@@ -85,7 +85,7 @@ TEST_CASE("an expired lease is re-issued with the next attempt, the first valid 
 }
 
 TEST_CASE("a silent worker's jobs are re-issued") {
-  LeaseTable t(Options());
+  LeaseTable t(FastLeases());
   t.AddJob(0);
   t.AddJob(1);
   t.OnWorkerStatus("a", 1, {}, 0, t0);
@@ -101,7 +101,7 @@ TEST_CASE("a silent worker's jobs are re-issued") {
 }
 
 TEST_CASE("a job missing from the worker's status after the grace time was lost") {
-  LeaseTable t(Options());
+  LeaseTable t(FastLeases());
   t.AddJob(0);
   t.OnWorkerStatus("a", 1, {}, 0, t0);
   REQUIRE(t.Schedule(t0).size() == 1);
@@ -114,7 +114,7 @@ TEST_CASE("a job missing from the worker's status after the grace time was lost"
 }
 
 TEST_CASE("an invalid result sends the job elsewhere, too many fail it") {
-  LeaseTable t(Options());
+  LeaseTable t(FastLeases());
   t.AddJob(0);
   t.OnWorkerStatus("bad", 1, {}, 0, t0);
   t.OnWorkerStatus("good", 1, {}, 0, t0);
@@ -140,7 +140,7 @@ TEST_CASE("an invalid result sends the job elsewhere, too many fail it") {
 TEST_CASE("a refusal sends the job elsewhere and never fails it") {
   // Workers dedicated to another run refuse; however many refuse, the job is not failed
   // (ahhs-evolve failed a run when 5 refusals hit one job, 1 in 40 concurrent runs).
-  LeaseTable t(Options());
+  LeaseTable t(FastLeases());
   t.AddJob(0);
   for (const char* w : {"other-a", "other-b", "other-c", "other-d"})
     t.OnWorkerStatus(w, 1, {}, 0, t0);
@@ -160,7 +160,7 @@ TEST_CASE("a refusal sends the job elsewhere and never fails it") {
 }
 
 TEST_CASE("a job whose lease expired goes to another worker, even one that sorts later") {
-  LeaseTable t(Options());
+  LeaseTable t(FastLeases());
   t.AddJob(0);
   t.OnWorkerStatus("a-lossy", 1, {}, 0, t0);
   t.OnWorkerStatus("b-clean", 1, {}, 0, t0);
@@ -178,7 +178,7 @@ TEST_CASE("a job whose lease expired goes to another worker, even one that sorts
 }
 
 TEST_CASE("a worker that loses leases in a row is passed over for a while, not for ever") {
-  auto o = Options();
+  auto o = FastLeases();
   o.pass_over_after = 2;
   o.pass_over = milliseconds(5000);
   LeaseTable t(o);
@@ -222,7 +222,7 @@ TEST_CASE("a worker that loses leases in a row is passed over for a while, not f
 }
 
 TEST_CASE("when every live worker is passed over, they still get jobs") {
-  auto o = Options();
+  auto o = FastLeases();
   o.pass_over_after = 1;
   LeaseTable t(o);
   t.AddJob(0);
@@ -238,7 +238,7 @@ TEST_CASE("when every live worker is passed over, they still get jobs") {
 }
 
 TEST_CASE("a worker restarted under the same id loses its leases at once, not after the grace") {
-  LeaseTable t(Options());
+  LeaseTable t(FastLeases());
   t.AddJob(0);
   t.AddJob(1);
   t.OnWorkerStatus("w", 1, {}, 0, t0, 7);

@@ -13,7 +13,7 @@ using namespace ahhs::modules;
 
 namespace {
 
-const Shape kShapes[] = {
+const Shape kVectorShapes[] = {
     {Variant::kAhhs2, 5, 30, 4, 1},    // gait AHHS2-30
     {Variant::kAhhs1, 5, 80, 4, 1},    // gait AHHS1-80
     {Variant::kAhhs2, 15, 15, 10, 2},  // pendulum AHHS2-15
@@ -41,7 +41,7 @@ TEST_CASE("a genome's vector has 3 values per hormone and 13 per AHHS2 or 7 per 
 }
 
 TEST_CASE("genome to vector to genome gives the genome back bit for bit") {
-  for (const Shape& shape : kShapes)
+  for (const Shape& shape : kVectorShapes)
     for (std::uint64_t seed = 1; seed <= 40; ++seed) {
       Rng rng(seed);
       Genome g = RandomGenome(shape, rng);

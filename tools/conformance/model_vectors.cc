@@ -25,7 +25,7 @@ struct Tick {
   std::vector<char> sensor_present, actuator_present;  // char: std::vector<bool> has no data()
 };
 
-struct Outputs {
+struct VectorOutputs {
   std::vector<double> hormones, actuators, outflow;
 };
 
@@ -33,14 +33,14 @@ struct Case {
   std::string name;
   Genome genome;
   std::vector<Tick> ticks;
-  std::vector<Outputs> expected;  // read from a file; empty when generated
+  std::vector<VectorOutputs> expected;  // read from a file; empty when generated
 };
 
 // Runs a case through modules/core: the outputs after every tick.
-std::vector<Outputs> Run(const Case& c) {
+std::vector<VectorOutputs> Run(const Case& c) {
   const modules::Controller controller(c.genome);
   modules::CompartmentState state = modules::MakeState(controller);
-  std::vector<Outputs> out;
+  std::vector<VectorOutputs> out;
   for (const Tick& t : c.ticks) {
     for (const auto& packet : t.received) modules::ReceiveHormones(packet.data(), &state);
     static_assert(sizeof(char) == sizeof(bool));
@@ -297,7 +297,7 @@ Case ReadCase(Reader& r) {
       if (r.Token(i) != "0" && r.Token(i) != "1") r.Fail("an actuator is 1 or 0");
       t.actuator_present.push_back(r.Token(i) == "1" ? 1 : 0);
     }
-    Outputs e;
+    VectorOutputs e;
     for (const auto& [key, n, dest] : {std::tuple<const char*, std::size_t, std::vector<double>*>{
                                            "expect_hormones", nh, &e.hormones},
                                        {"expect_actuators", na, &e.actuators},
@@ -331,7 +331,7 @@ std::string WriteModelVectors() {
     Line(out, "mu", m.mu);
     Line(out, "diffusion", m.diffusion);
     Line(out, "rules", m.rule_values);
-    const std::vector<Outputs> outputs = Run(c);
+    const std::vector<VectorOutputs> outputs = Run(c);
     for (std::size_t k = 0; k < c.ticks.size(); ++k) {
       const Tick& t = c.ticks[k];
       out << "tick " << t.num_neighbours << '\n';
@@ -364,7 +364,7 @@ std::string CheckModelVectors(const std::string& text) {
       r.Expect("case", 1);
       const Case c = ReadCase(r);
       ++cases;
-      const std::vector<Outputs> got = Run(c);
+      const std::vector<VectorOutputs> got = Run(c);
       for (std::size_t k = 0; k < got.size(); ++k)
         for (const auto& [key, want, have] :
              {std::tuple<const char*, const std::vector<double>*, const std::vector<double>*>{

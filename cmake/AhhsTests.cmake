@@ -44,8 +44,9 @@ endfunction()
 
 # ahhs_add_script_test(NAME name COMMAND ... LABELS ... [TIMEOUT s] [COST s] [PACED])
 # COST: about how many seconds it runs; CTest starts the costliest tests first (a fresh clone has
-# no timings of its own). PACED: its processes run in real time or wait on timeouts (a tenth of
-# a core or less), so it needs no lock against the others (below).
+# no timings of its own). PACED: its processes wait on timeouts (a tenth of a core or less) and
+# it checks nothing a loaded machine changes, so it needs no lock against the others (below);
+# not for real-time episodes, which do not wait for a late process.
 function(ahhs_add_script_test)
   cmake_parse_arguments(ARG "PACED" "NAME;TIMEOUT;COST" "COMMAND;LABELS" ${ARGN})
   if(NOT ARG_TIMEOUT)

@@ -66,10 +66,12 @@ $E $gait --joints fixed --variant ahhs1 --out $tmp/gf-fused --workers 1 --arena-
 same_run $tmp/gf-direct $tmp/gf-fused "gait fixed ahhs1, fused arena"
 
 echo "== 2. kill -9 and resume; Ctrl-C"
-long="--scenario gait --hormones 3 --rules 6 --population 8 --generations 16 --duration 3 --seed 13 --lcm-url $url"
+# The sanitizer tier runs the long run with half its generations and one kill point.
+long_gens=16 kill_points="2 9" external_at=5
+ci_tier_only "a 16-generation long run (8 here) and a second kill point" &&
+  long_gens=8 kill_points=5 external_at=3
+long="--scenario gait --hormones 3 --rules 6 --population 8 --generations $long_gens --duration 3 --seed 13 --lcm-url $url"
 $E $long --out $tmp/whole --workers 2 >/dev/null 2>&1 || fail "uninterrupted run"
-kill_points="2 9"
-ci_tier_only "a second kill point (after 2 generations)" && kill_points=9
 for at in $kill_points; do
   $E $long --out $tmp/killed$at --workers 2 >$tmp/killed.out 2>&1 &
   pid=$!
@@ -79,7 +81,7 @@ for at in $kill_points; do
   done
   kill -9 $pid; wait $pid 2>/dev/null
   stored=$(($(wc -l <$tmp/killed$at/generations.csv) - 1))
-  [[ $stored -lt 16 ]] || fail "the run ended before the kill"
+  [[ $stored -lt $long_gens ]] || fail "the run ended before the kill"
   sleep 0.3
   pgrep -g "$pg" -f "$bin/ahhs-worker" >/dev/null && fail "local workers outlived a killed evolver"
   $E --resume $tmp/killed$at --workers 2 >$tmp/resume.out 2>&1 || { cat $tmp/resume.out; fail "resume"; }
@@ -201,7 +203,7 @@ sleep 0.5
 grep -q "version" $tmp/refusal.out || fail "refusal message: $(cat $tmp/refusal.out)"
 $E $long --out $tmp/external --workers 0 --job-deadline 20 >$tmp/external.out 2>&1 &
 pid=$!
-for _ in $(seq 1 600); do [[ $(wc -l 2>/dev/null <$tmp/external/generations.csv || echo 0) -gt 5 ]] && break; sleep 0.01; done
+for _ in $(seq 1 600); do [[ $(wc -l 2>/dev/null <$tmp/external/generations.csv || echo 0) -gt $external_at ]] && break; sleep 0.01; done
 kill -9 $w2
 wait $pid || { cat $tmp/external.out; fail "run with external workers"; }
 kill $spam 2>/dev/null

@@ -153,7 +153,7 @@ int Parse(cli::App& app, int argc, char** argv);
 const char* Version();
 
 // Gives `app` a --version that prints "PROGRAM VERSION" and then one line for each thing the
-// program speaks, as its layer words it ("farm protocol 3", "physics: pendulum 2026-12-01,
+// program speaks, as its layer words it ("farm protocol 4", "physics: pendulum 2026-12-01,
 // ...": docs/reference.md).
 void SetVersion(cli::App& app, std::vector<std::string> speaks);
 

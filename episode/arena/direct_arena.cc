@@ -1,6 +1,10 @@
 #include "episode/arena/direct_arena.h"
 
+#include <ahhs/sim_state_t.hpp>
 #include <memory>
+
+#include "episode/fitness/fitness_monitor.h"
+#include "sim/node/sim_codec.h"
 
 namespace ahhs::episode {
 
@@ -28,6 +32,20 @@ EpisodeResult RunDirectEpisode(const EpisodeSpec& spec, const DirectObserver& ob
     for (std::size_t a = 0; a < na; ++a)
       actuator_masks.back()[a] = scenario->actuator_owned(c, static_cast<int>(a));
   }
+  // The behaviour descriptor from the states the sim would publish, through the fitness
+  // monitor, as the fused and process arenas have it: every arena kind gives the same bits. The
+  // pendulum's needs every tick's state, the gait's the first and the last.
+  const bool pendulum = spec.config.kind == sim::ScenarioKind::kPendulum;
+  FitnessMonitor monitor(spec.config.kind, scenario->control_period(), scenario->total_ticks());
+  std::vector<sim::BodyState> bodies;
+  sim_state_t state;
+  auto observe_state = [&] {
+    scenario->Bodies(&bodies);
+    sim::KeepMovingBodies(&bodies);
+    sim::FillStateMessage(bodies, 0, scenario->tick(), scenario->sim_time(), &state);
+    monitor.Add(state);
+  };
+  observe_state();
   while (true) {
     for (int c = 0; c < n; ++c) {
       const auto i = static_cast<std::size_t>(c);
@@ -44,12 +62,14 @@ EpisodeResult RunDirectEpisode(const EpisodeSpec& spec, const DirectObserver& ob
       failed.episode_failed = true;
       return failed;
     }
+    if (pendulum || status == sim::StepStatus::kFinished) observe_state();
     if (status == sim::StepStatus::kFinished) break;
   }
   EpisodeResult done;
   done.ok = true;
   done.fitness = scenario->Fitness();
   done.cost = scenario->Cost();
+  done.descriptor = monitor.descriptor();
   return done;
 }
 

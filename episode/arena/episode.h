@@ -43,6 +43,8 @@ struct EpisodeResult {
   bool ok = false;
   double fitness = 0;
   double cost = 0;
+  // The behaviour descriptor (FitnessMonitor::descriptor): pendulum 2 values, gait 2.
+  std::vector<double> descriptor;
   std::string error;
   int states_missed = 0;
   // The episode itself failed (physics blew up; `error` says how): a property of the genome

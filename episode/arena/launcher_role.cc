@@ -185,6 +185,7 @@ EpisodeResult RunEpisode(bus::Bus& bus, const EpisodeSpec& spec,
   done.ok = true;
   done.fitness = final_fitness->fitness;
   done.cost = final_fitness->cost;
+  done.descriptor = final_fitness->descriptor;
   done.states_missed = final_fitness->states_missed;
   return finish(done);
 }

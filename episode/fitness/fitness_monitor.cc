@@ -25,6 +25,10 @@ bool FitnessMonitor::Add(const sim_state_t& s) {
       // (-l sin phi, l cos phi).
       const double phi = std::atan2(s.px[0] - s.px[1], s.pz[1] - s.pz[0]);
       cost_ += std::fabs(phi);
+      if (std::fabs(phi) < M_PI / 2) ++ticks_above_;
+      const sim::PendulumConstants pendulum;
+      if (pendulum.wall_inner - std::fabs(s.px[0]) - pendulum.cart_half_width < kNearWall)
+        ++ticks_near_wall_;
       ticks_ = static_cast<std::int64_t>(tick);
       ++ticks_with_state_;
     }
@@ -64,6 +68,20 @@ double FitnessMonitor::fitness() const {
   // Mean over the ticks whose state arrived: a lost state leaves the estimate unbiased.
   if (kind_ == sim::ScenarioKind::kPendulum) return sim::PendulumFitness(cost_, ticks_with_state_);
   return sim::GaitFitness(cost(), sim::GaitConstants{});
+}
+
+std::vector<double> FitnessMonitor::descriptor() const {
+  if (kind_ == sim::ScenarioKind::kPendulum) {
+    const double n = static_cast<double>(ticks_with_state_);
+    if (ticks_with_state_ == 0) return {0, 0};
+    return {static_cast<double>(ticks_above_) / n, static_cast<double>(ticks_near_wall_) / n};
+  }
+  return {now_[0] - start_[0], now_[1] - start_[1]};
+}
+
+std::vector<std::string> FitnessMonitor::DescriptorNames(sim::ScenarioKind kind) {
+  if (kind == sim::ScenarioKind::kPendulum) return {"above_pivot", "at_wall"};
+  return {"end_x", "end_y"};
 }
 
 }  // namespace ahhs::episode

@@ -5,6 +5,7 @@
 #include <ahhs/sim_state_t.hpp>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "sim/core/scenario.h"
 
@@ -23,6 +24,13 @@ class FitnessMonitor {
 
   double fitness() const;
   double cost() const;
+  // The behaviour descriptor (docs/scenarios.md, "Behaviour descriptors"). Pendulum: the shares
+  // of the ticks seen with the bob above the pivot and with the cart within kNearWall of a wall;
+  // gait: the centroid's displacement from the first state to the latest, x and y, m.
+  static constexpr double kNearWall = 0.01;  // m, gap between the cart's side and a wall
+  std::vector<double> descriptor() const;
+  // What descriptor() holds, value by value: "above_pivot", "at_wall"; "end_x", "end_y".
+  static std::vector<std::string> DescriptorNames(sim::ScenarioKind kind);
   std::int64_t ticks_seen() const { return ticks_; }
   std::int64_t states_seen() const { return states_; }
   // Whether the episode's last state has arrived (gait) / every tick's state (pendulum).
@@ -45,6 +53,7 @@ class FitnessMonitor {
   std::int64_t ticks_with_state_ = 0;  // pendulum: tick-boundary states used
   std::int64_t states_ = 0;
   double cost_ = 0;
+  std::int64_t ticks_above_ = 0, ticks_near_wall_ = 0;  // pendulum
   bool have_start_ = false;
   double start_[2] = {0, 0}, now_[2] = {0, 0};
   double last_time_ = -1;

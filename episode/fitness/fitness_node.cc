@@ -104,6 +104,8 @@ fitness_t FitnessNode::Message(bool is_final, std::int8_t status, const std::str
   f.sim_time = static_cast<double>(monitor_->ticks_seen()) * shape_.control_period;
   f.fitness = monitor_->fitness();
   f.cost = monitor_->cost();
+  f.descriptor = monitor_->descriptor();
+  f.descriptor_size = static_cast<std::int8_t>(f.descriptor.size());
   f.is_final = is_final;
   f.status = status;
   f.states_seen = static_cast<std::int32_t>(monitor_->states_seen());

@@ -41,6 +41,7 @@ FarmResult ArenaEvaluator::Evaluate(const FarmJob& job) {
     out.status = FarmResult::Status::kOk;
     out.fitness = r.fitness;
     out.cost = r.cost;
+    out.descriptor = r.descriptor;
     out.states_missed = r.states_missed;
   } else if (r.episode_failed) {
     out.status = FarmResult::Status::kOk;

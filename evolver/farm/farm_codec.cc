@@ -131,6 +131,8 @@ eval_result_t ResultMessage(const FarmResult& o) {
   m.wall_time = o.wall_time;
   m.late_messages = o.states_missed;  // the wire keeps its first name
   m.message = bus::ToWireText(o.message);
+  m.descriptor = o.descriptor;
+  m.descriptor_size = static_cast<std::int8_t>(m.descriptor.size());
   return m;
 }
 
@@ -149,6 +151,7 @@ FarmResult OutcomeFromMessage(const eval_result_t& m) {
   o.wall_time = m.wall_time;
   o.states_missed = m.late_messages;
   o.message = m.message;
+  o.descriptor = m.descriptor;
   return o;
 }
 

@@ -231,13 +231,16 @@ void FarmEvaluator::TakeResults(Batch* batch, FarmClock::time_point heard) {
       }
       continue;
     }
-    const bool valid =
-        o.status == FarmResult::Status::kOk && std::isfinite(o.fitness) && std::isfinite(o.cost);
+    const bool valid = o.status == FarmResult::Status::kOk && std::isfinite(o.fitness) &&
+                       std::isfinite(o.cost) &&
+                       std::all_of(o.descriptor.begin(), o.descriptor.end(),
+                                   [](double x) { return std::isfinite(x); });
     const auto verdict = batch->table.OnResult(o.job, o.attempt, o.worker, valid, heard);
     if (verdict == LeaseTable::Verdict::kAccepted) {
       Evaluation& e = batch->results[slot->second];
       e.fitness = o.fitness;
       e.cost = o.cost;
+      e.descriptor = o.descriptor;
       e.worker = o.worker;
       e.attempt = o.attempt;
       e.wall_time = o.wall_time;

@@ -15,8 +15,9 @@ namespace ahhs::evolver {
 
 // Bumped whenever a message of the farm changes meaning. Workers refuse requests of another
 // version; evolvers ignore workers of another version (both say so).
-inline constexpr int kFarmProtocolVersion = 3;  // 3: the envelope of noise in EVAL/REQUEST
-inline std::string FarmVersionLine() {          // for --version
+// 3: the envelope of noise in EVAL/REQUEST; 4: the behaviour descriptor in EVAL/RESULT.
+inline constexpr int kFarmProtocolVersion = 4;
+inline std::string FarmVersionLine() {  // for --version
   return "farm protocol " + std::to_string(kFarmProtocolVersion);
 }
 
@@ -65,6 +66,7 @@ struct FarmResult {
   double wall_time = 0;   // seconds
   int states_missed = 0;  // ticks whose state the fitness monitor missed (process arenas)
   std::string message;
+  std::vector<double> descriptor;  // the episode's behaviour descriptor (EpisodeResult)
 };
 
 struct WorkerStatus {

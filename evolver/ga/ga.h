@@ -66,8 +66,9 @@ struct EvaluationJob {
 struct Evaluation {
   double fitness = 0;
   double cost = 0;
-  std::string worker;  // who evaluated it ("" in-process)
-  int attempt = 0;     // how often the job was issued before this result (0 = first issue)
+  std::vector<double> descriptor;  // the episode's behaviour descriptor (EpisodeResult)
+  std::string worker;              // who evaluated it ("" in-process)
+  int attempt = 0;  // how often the job was issued before this result (0 = first issue)
   double wall_time = 0;
   std::string message;  // e.g. why an episode failed (its fitness is then 0)
 };

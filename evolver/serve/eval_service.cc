@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "episode/arena/episode.h"
+#include "episode/fitness/fitness_monitor.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/genome_vector.h"
 #include "modules/core/random.h"
@@ -59,6 +60,7 @@ json EvalService::Hello() const {
           {"trials", settings_.trials},
           {"aggregate", AggregateName(settings_.aggregate)},
           {"envelope", envelope},
+          {"descriptor", episode::FitnessMonitor::DescriptorNames(settings_.task.kind)},
           {"max_batch", kMaxServiceBatch}};
 }
 
@@ -140,15 +142,32 @@ json EvalService::Ask(const json& request) {
   json results = json::array();
   for (std::size_t i = 0; i < genomes.size(); ++i) {
     json trials = json::array();
-    std::vector<double> scores;
+    std::vector<double> scores, descriptor_sum;
+    int described = 0;
     for (int t = 0; t < settings_.trials; ++t) {
       const std::size_t k = i * static_cast<std::size_t>(settings_.trials) + t;
       if (!std::isfinite(out[k].fitness))
         throw std::runtime_error("a non-finite fitness for genomes[" + std::to_string(i) + "]");
       scores.push_back(out[k].fitness);
-      trials.push_back({{"seed", jobs[k].seed}, {"fitness", out[k].fitness}});
+      const std::vector<double>& d = out[k].descriptor;
+      trials.push_back({{"seed", jobs[k].seed},
+                        {"fitness", out[k].fitness},
+                        {"descriptor", d.empty() ? json(nullptr) : json(d)}});
+      if (d.empty()) continue;  // the episode failed
+      if (descriptor_sum.empty()) descriptor_sum.assign(d.size(), 0.0);
+      if (d.size() != descriptor_sum.size())
+        throw std::runtime_error("descriptors of different sizes for genomes[" + std::to_string(i) +
+                                 "]");
+      for (std::size_t j = 0; j < d.size(); ++j) descriptor_sum[j] += d[j];
+      ++described;
+    }
+    json descriptor = nullptr;
+    if (described > 0) {
+      for (double& x : descriptor_sum) x /= described;
+      descriptor = descriptor_sum;
     }
     results.push_back({{"fitness", AggregateFitness(settings_.aggregate, scores)},
+                       {"descriptor", std::move(descriptor)},
                        {"genome_hash", modules::GenomeHashText(genomes[i])},
                        {"trials", std::move(trials)}});
   }

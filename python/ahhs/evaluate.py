@@ -1,10 +1,10 @@
 """A client of ahhs-evaluate, the ask/tell evaluation service (docs/protocol.md, "Evaluation
-service"): genomes (documents or vectors) in, every trial's seed and fitness and their aggregate
-out, evaluated by the same farm as ahhs-evolve.
+service"): genomes (documents or vectors) in, every trial's seed, fitness and behaviour
+descriptor and their aggregate out, evaluated by the same farm as ahhs-evolve.
 
     with Evaluator(["--scenario", "pendulum", "--trials", "3"]) as ev:
         results = ev.evaluate([genome_doc, [0.5] * ev.vector_size])
-        results[0]["fitness"], results[0]["trials"]
+        results[0]["fitness"], results[0]["descriptor"], results[0]["trials"]
 """
 import json
 import os
@@ -13,7 +13,7 @@ import subprocess
 
 from .vector import Shape
 
-PROTOCOL_VERSION = 1
+PROTOCOL_VERSION = 2
 
 
 class EvaluationError(RuntimeError):
@@ -72,9 +72,18 @@ class Evaluator:
     def vector_size(self):
         return self.hello["vector_size"]
 
+    @property
+    def descriptor_names(self):
+        """What a result's "descriptor" holds, value by value (docs/scenarios.md, "Behaviour
+        descriptors"): ["above_pivot", "at_wall"] for the pendulum, ["end_x", "end_y"] for the
+        gait."""
+        return list(self.hello["descriptor"])
+
     def evaluate(self, genomes, seed=None, request_id=None):
         """Evaluates a batch: each genome a document (dict) or a vector (sequence of numbers).
-        Returns one result per genome: {"fitness", "genome_hash", "trials": [{"seed", "fitness"}]}.
+        Returns one result per genome: {"fitness", "descriptor", "genome_hash",
+        "trials": [{"seed", "fitness", "descriptor"}]} (a descriptor is None for an episode that
+        failed; the result's is the mean of its trials').
         Raises EvaluationError with the service's message for a bad request."""
         batch = [g if isinstance(g, dict) else {"vector": [float(v) for v in g]} for g in genomes]
         request = {"v": PROTOCOL_VERSION, "genomes": batch}

@@ -20,6 +20,7 @@ class EvaluatorTest(unittest.TestCase):
                           "--workers", "2", "--lcm-url", URL]
         with ahhs.Evaluator(options) as ev:
             self.assertEqual(ev.hello["scenario"], "pendulum")
+            self.assertEqual(ev.descriptor_names, ["above_pivot", "at_wall"])
             shape = ev.shape
             self.assertEqual((shape.sensors, shape.actuators), (10, 2))
             vector = [0.3] * ev.vector_size
@@ -30,6 +31,9 @@ class EvaluatorTest(unittest.TestCase):
             for r in results:
                 self.assertEqual(len(r["trials"]), 2)
                 self.assertEqual(r["fitness"], (r["trials"][0]["fitness"] + r["trials"][1]["fitness"]) / 2)
+                d = [t["descriptor"] for t in r["trials"]]
+                self.assertTrue(all(0 <= x <= 1 for x in d[0] + d[1]), d)
+                self.assertEqual(r["descriptor"], [(d[0][j] + d[1][j]) / 2 for j in range(2)])
             self.assertEqual(ev.evaluate([genome, vector], seed=5), results)
             with self.assertRaisesRegex(ahhs.EvaluationError, "a vector of 3 values"):
                 ev.evaluate([[0.1, 0.2, 0.3]])
@@ -45,6 +49,10 @@ class EvaluatorTest(unittest.TestCase):
                                  capture_output=True, text=True, check=True).stdout
         launched = [l for l in out.splitlines() if l.startswith("fitness: ")][-1]
         self.assertEqual(float(launched.split()[1]), t["fitness"])
+        # and its descriptor: "descriptor: above_pivot A, at_wall W"
+        described = [l for l in out.splitlines() if l.startswith("descriptor: ")][-1]
+        values = [float(part.split()[1]) for part in described[len("descriptor: "):].split(", ")]
+        self.assertEqual(values, t["descriptor"])
 
     def test_a_service_that_cannot_start_says_why(self):
         with self.assertRaisesRegex(ahhs.EvaluationError, "unknown scenario"):

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # ahhs-launch end to end, inside a private network namespace:
-#  1. fused (inproc:// and LCM's memq://) and process arenas give bit-identical fitness
+#  1. fused (inproc:// and LCM's memq://) and process arenas give bit-identical fitness and
+#     behaviour descriptor
 #     (pendulum, gait; AHHS1, AHHS2; seeds); --arena-kind fused refuses a URL that leaves the
 #     process; the deprecated --fused still works and says so;
 #  2. a genome of the wrong shape is refused;
@@ -34,6 +35,10 @@ for c in "pendulum p2 1 30" "pendulum p1 2 30" "gait g2 3 10" "gait g1 4 10" "ga
   echo "$c: fused $(fit $tmp/f.out) fused on memq $(fit $tmp/m.out) processes $(fit $tmp/p.out)"
   [[ -n "$(fit $tmp/f.out)" && "$(fit $tmp/f.out)" == "$(fit $tmp/p.out)" ]] || fail "fused and process fitness differ ($c)"
   [[ "$(fit $tmp/f.out)" == "$(fit $tmp/m.out)" ]] || fail "inproc:// and memq:// differ ($c)"
+  # The behaviour descriptor too.
+  d=$(grep "^descriptor: " $tmp/f.out)
+  [[ -n $d && $d == "$(grep '^descriptor: ' $tmp/p.out)" ]] ||
+    fail "fused and process descriptors differ ($c): $d; $(grep '^descriptor: ' $tmp/p.out)"
 done
 if "$bin/ahhs-launch" --scenario pendulum --genome $tmp/p2.json --arena-kind fused --lcm-url "$url" 2>$tmp/err; then fail "--arena-kind fused on udpm accepted"; fi
 grep -q "must be inproc:// or memq://" $tmp/err || fail "--arena-kind fused URL message: $(cat $tmp/err)"

@@ -23,6 +23,8 @@ class SeedFitness : public evolver::FitnessEvaluator {
     for (const auto& j : jobs) {
       evolver::Evaluation e;
       e.fitness = static_cast<double>(j.seed % 1000) / 1000;
+      // Descriptor (trial, index); trial 2 of genome 1 "fails" (no descriptor).
+      if (!(j.trial == 2 && j.index == 1)) e.descriptor = {1.0 * j.trial, 0.5 * j.index};
       out.push_back(e);
     }
     ++batches;
@@ -47,13 +49,13 @@ TEST_CASE("an ask is answered with every trial's seed and fitness and their aggr
   SeedFitness f;
   evolver::EvalService service(Settings(), f);
   const json hello = service.Hello();
-  CHECK(hello.at("v") == 1);
+  CHECK(hello.at("v") == 2);
   CHECK(hello.at("vector_size") == 3 * 2 + 13 * 3);
   CHECK(hello.at("aggregate") == "median");
   modules::Rng rng(4);
   const modules::Genome g = modules::RandomGenome({modules::Variant::kAhhs2, 2, 3, 4, 1}, rng);
   const json ask = {
-      {"v", 1},
+      {"v", 2},
       {"id", {{"batch", 1}}},
       {"seed", 42},
       {"genomes", {modules::GenomeToJson(g), {{"vector", modules::GenomeToVector(g)}}}}};
@@ -73,10 +75,20 @@ TEST_CASE("an ask is answered with every trial's seed and fitness and their aggr
       scores.push_back(static_cast<double>(seed % 1000) / 1000);
     }
     CHECK(r.at("fitness") == evolver::AggregateFitness(evolver::Aggregate::kMedian, scores));
+    // Each trial's descriptor; the result's is their mean, without a trial that has none.
+    CHECK(r.at("trials")[0].at("descriptor") == json{0.0, 0.5 * static_cast<double>(i)});
+    if (i == 0) {
+      CHECK(r.at("trials")[2].at("descriptor") == json{2.0, 0.0});
+      CHECK(r.at("descriptor") == json{1.0, 0.0});  // (0 + 1 + 2) / 3
+    } else {
+      CHECK(r.at("trials")[2].at("descriptor") == nullptr);
+      CHECK(r.at("descriptor") == json{0.5, 0.5});  // (0 + 1) / 2
+    }
   }
+  CHECK(hello.at("descriptor") == json{"end_x", "end_y"});
   CHECK(f.batches == 1);  // one request, one batch: its trials spread over the workers
   // Without a seed: DeriveSeed(service seed, {request number}).
-  const json auto_seed = service.Handle(R"({"v": 1, "genomes": [{"vector": )" +
+  const json auto_seed = service.Handle(R"({"v": 2, "genomes": [{"vector": )" +
                                         json(modules::GenomeToVector(g)).dump() + "}]}");
   CHECK(auto_seed.at("seed") == modules::DeriveSeed(9, {1}));
   CHECK(auto_seed.at("id") == nullptr);
@@ -88,33 +100,33 @@ TEST_CASE("a bad request gets one error line naming what is wrong, and nothing i
   const auto error = [&](const std::string& line) {
     const json a = service.Handle(line);
     REQUIRE(a.contains("error"));
-    CHECK(a.at("v") == 1);
+    CHECK(a.at("v") == 2);
     return a.at("error").get<std::string>();
   };
   CHECK(error("{") == "not a JSON line");
   CHECK(error("[1]") == "a request is a JSON object");
   CHECK_THAT(error(R"({"id": 3, "genomes": []})"), Catch::Contains("protocol version"));
-  CHECK(service.Handle(R"({"v": 1, "id": 3, "genomes": []})").at("id") == 3);
-  CHECK_THAT(error(R"({"v": 1, "genomes": []})"), Catch::Contains("1 to 100000 per request"));
-  CHECK_THAT(error(R"({"v": 1, "genomes": [{"vector": [1, 2]}]})"),
+  CHECK(service.Handle(R"({"v": 2, "id": 3, "genomes": []})").at("id") == 3);
+  CHECK_THAT(error(R"({"v": 2, "genomes": []})"), Catch::Contains("1 to 100000 per request"));
+  CHECK_THAT(error(R"({"v": 2, "genomes": [{"vector": [1, 2]}]})"),
              Catch::Contains("genomes[0]: a vector of 2 values for a genome of 45"));
-  CHECK_THAT(error(R"({"v": 1, "genomes": [{"vector": ["a"]}]})"),
+  CHECK_THAT(error(R"({"v": 2, "genomes": [{"vector": ["a"]}]})"),
              Catch::Contains("genomes[0]: vector: an array of numbers"));
-  CHECK_THAT(error(R"({"v": 1, "genomes": [{"format": "ahhs-genome"}]})"),
+  CHECK_THAT(error(R"({"v": 2, "genomes": [{"format": "ahhs-genome"}]})"),
              Catch::StartsWith("genomes[0]: "));
-  CHECK_THAT(error(R"({"v": 1, "seed": -5, "genomes": [{"vector": []}]})"),
+  CHECK_THAT(error(R"({"v": 2, "seed": -5, "genomes": [{"vector": []}]})"),
              Catch::Contains("genomes[0]"));
   const std::string vector = json(std::vector<double>(45, 0.5)).dump();
-  CHECK_THAT(error(R"({"v": 1, "seed": -5, "genomes": [{"vector": )" + vector + "}]}"),
+  CHECK_THAT(error(R"({"v": 2, "seed": -5, "genomes": [{"vector": )" + vector + "}]}"),
              Catch::Contains("seed"));
   CHECK_THAT(
-      error(R"({"v": 1, "seed": "18446744073709551616", "genomes": [{"vector": )" + vector + "}]}"),
+      error(R"({"v": 2, "seed": "18446744073709551616", "genomes": [{"vector": )" + vector + "}]}"),
       Catch::Contains("seed"));
-  CHECK_THAT(error(R"({"v": 1, "genome": []})"), Catch::Contains("unknown key 'genome'"));
+  CHECK_THAT(error(R"({"v": 2, "genome": []})"), Catch::Contains("unknown key 'genome'"));
   // A genome of the pendulum's shape does not fit the gait.
   modules::Rng rng(1);
   const json pendulum =
       modules::GenomeToJson(modules::RandomGenome({modules::Variant::kAhhs2, 2, 3, 10, 2}, rng));
-  CHECK_THAT(error(json{{"v", 1}, {"genomes", {pendulum}}}.dump()), Catch::Contains("genomes[0]"));
+  CHECK_THAT(error(json{{"v", 2}, {"genomes", {pendulum}}}.dump()), Catch::Contains("genomes[0]"));
   CHECK(f.batches == 0);
 }

@@ -14,10 +14,10 @@ task="--scenario gait --joints fixed --duration 4"
 python3 - $tmp/g.json >$tmp/requests <<'PY'
 import json, sys
 g = json.load(open(sys.argv[1]))
-ask = lambda **k: print(json.dumps(dict(v=1, **k)))
+ask = lambda **k: print(json.dumps(dict(v=2, **k)))
 ask(id="doc", seed=42, genomes=[g])
 print("not json")
-print(json.dumps({"v": 2, "id": 7, "genomes": [g]}))
+print(json.dumps({"v": 1, "id": 7, "genomes": [g]}))
 ask(id="vec", seed="18446744073709551615", genomes=[{"vector": [0.5] * (15 + 13 * 30)}, g])
 ask(id="short", genomes=[{"vector": [0.5] * 3}])
 ask(id="neg", seed=-1, genomes=[g])
@@ -34,18 +34,21 @@ python3 - $tmp/out >$tmp/launches <<'PY' || fail "answers: $(cat $tmp/out)"
 import json, sys
 lines = [json.loads(l) for l in open(sys.argv[1])]
 hello, answers = lines[0], lines[1:]
-assert hello["v"] == 1 and hello["service"] == "ahhs-evaluate", hello
+assert hello["v"] == 2 and hello["service"] == "ahhs-evaluate", hello
+assert hello["descriptor"] == ["end_x", "end_y"], hello
 assert hello["scenario"] == "gait" and hello["joints"] == "fixed" and hello["trials"] == 2, hello
 assert hello["vector_size"] == 405 and hello["envelope"]["envelope.friction"] == 0.05, hello
 assert len(answers) == 10, answers
 by = {}
 for a in answers:
-    assert a["v"] == 1
+    assert a["v"] == 2
     by.setdefault(a["id"], []).append(a)
 doc = by["doc"][0]
 assert doc["seed"] == 42 and len(doc["results"]) == 1
 r = doc["results"][0]
 assert len(r["trials"]) == 2 and r["fitness"] == (r["trials"][0]["fitness"] + r["trials"][1]["fitness"]) / 2, r
+d = [t["descriptor"] for t in r["trials"]]
+assert r["descriptor"] == [(d[0][0] + d[1][0]) / 2, (d[0][1] + d[1][1]) / 2], r
 assert by["doc"][1] == doc, "the same request, another answer"
 assert answers[1]["id"] is None and "not a JSON line" in answers[1]["error"], answers[1]
 assert "protocol version" in by[7][0]["error"]
@@ -56,20 +59,26 @@ assert vec["seed"] == 18446744073709551615 and len(vec["results"]) == 2
 assert vec["results"][1]["genome_hash"] == doc["results"][0]["genome_hash"]
 a1, a2 = by["auto1"][0], by["auto2"][0]
 assert a1["seed"] != a2["seed"], "requests without a seed got the same one"
-# Every trial, for ahhs-launch to replay: genome, seed, fitness.
+# Every trial, for ahhs-launch to replay: genome, seed, fitness, descriptor.
 for a, g in ((doc, 0), (vec, 0)):
     for t in a["results"][g]["trials"]:
-        print(a["id"], t["seed"], repr(t["fitness"]))
+        print(a["id"], t["seed"], repr(t["fitness"]), repr(t["descriptor"][0]), repr(t["descriptor"][1]))
 PY
 echo "== 2. every trial is what ahhs-launch gives"
 "$bin/ahhs-genome" from-vector - >$tmp/vec.json <<<"{\"format\": \"ahhs-genome-vector\", \"version\": 1, \"shape\": {\"variant\": \"ahhs2\", \"hormones\": 5, \"rules\": 30, \"sensors\": 4, \"actuators\": 1}, \"x\": $(python3 -c 'print([0.5] * 405)')}"
-while read -r id seed fitness; do
+while read -r id seed fitness x y; do
   genome=$tmp/g.json
   [[ $id == vec ]] && genome=$tmp/vec.json
-  got=$("$bin/ahhs-launch" $task --envelope paper --genome $genome --seed $seed --arena-kind fused | sed -n 's/^fitness: //p')
+  "$bin/ahhs-launch" $task --envelope paper --genome $genome --seed $seed --arena-kind fused >$tmp/launch.out
+  got=$(sed -n 's/^fitness: //p' $tmp/launch.out)
   python3 -c "import sys; sys.exit(float('$got') != $fitness)" || fail "$id seed $seed: service $fitness, ahhs-launch $got"
+  # The descriptor too (the service's from the farm's direct arenas, ahhs-launch's from its
+  # fitness monitor's FITNESS): "descriptor: end_x X, end_y Y".
+  got=$(sed -n 's/^descriptor: end_x \([^,]*\), end_y \(.*\)$/\1 \2/p' $tmp/launch.out)
+  python3 -c "import sys; a = '$got'.split(); sys.exit(len(a) != 2 or float(a[0]) != $x or float(a[1]) != $y)" ||
+    fail "$id seed $seed: service descriptor $x $y, ahhs-launch '$got'"
 done <$tmp/launches
-echo "  $(wc -l <$tmp/launches) trials reproduced exactly"
+echo "  $(wc -l <$tmp/launches) trials reproduced exactly, fitness and descriptor"
 echo "== 3. external workers only, the same answers"
 "$bin/ahhs-worker" --lcm-url "$url" --any-run --id ext >/dev/null 2>&1 &
 w=$!

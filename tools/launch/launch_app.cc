@@ -5,12 +5,15 @@
 #include <cstdio>
 #include <iostream>
 #include <stdexcept>
+#include <string>
 
 #include "base/cli.h"
+#include "base/format.h"
 #include "bus/lcm_bus.h"
 #include "bus/open_bus.h"
 #include "episode/arena/fused_arena.h"
 #include "episode/arena/process_arena.h"
+#include "episode/fitness/fitness_monitor.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/random.h"
 
@@ -186,6 +189,12 @@ int RunLaunch(LaunchOptions o, const ep::EpisodeSpec& spec, const std::atomic<bo
       "scenario %s, seed %llu, %s arena%s; ticks without a state at the fitness monitor: %d\n",
       ahhs::sim::ScenarioName(spec.config.kind), static_cast<unsigned long long>(o.seed),
       o.fused ? "fused" : "process", o.realtime ? ", real time" : "", result.states_missed);
+  // The behaviour descriptor (docs/scenarios.md, "Behaviour descriptors"), exact.
+  const auto names = ahhs::episode::FitnessMonitor::DescriptorNames(spec.config.kind);
+  std::string descriptor;
+  for (std::size_t j = 0; j < result.descriptor.size() && j < names.size(); ++j)
+    descriptor += (j ? ", " : "") + names[j] + " " + ahhs::base::ExactDouble(result.descriptor[j]);
+  if (!descriptor.empty()) std::printf("descriptor: %s\n", descriptor.c_str());
   std::printf("fitness: %.17g\n", result.fitness);
   return 0;
 }

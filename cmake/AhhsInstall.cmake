@@ -109,6 +109,7 @@ install(FILES ${src}/README.md ${src}/CHANGELOG.md DESTINATION ${CMAKE_INSTALL_D
         COMPONENT lab)
 install(DIRECTORY ${src}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT lab)
 install(DIRECTORY ${src}/examples/downstream ${src}/examples/firmware-c ${src}/examples/tracker-c
+                  ${src}/examples/optimizers
         DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples COMPONENT lab)
 find_program(HELP2MAN help2man)
 if(HELP2MAN AND NOT CMAKE_CROSSCOMPILING AND NOT AHHS_SANITIZE)

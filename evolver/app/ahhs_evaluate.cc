@@ -1,7 +1,8 @@
 // ahhs-evaluate: the ask/tell evaluation service (docs/protocol.md, "Evaluation service"). Reads
 // requests as JSON lines on stdin, answers each with one JSON line on stdout, and evaluates
 // through the same farm as ahhs-evolve: --workers local workers, and any worker on the bus.
-// Ends at the end of its input (exit 0) or on Ctrl-C (exit 130).
+// Ends at the end of its input (exit 0) or on Ctrl-C (exit 130). With --out (or --resume) it
+// records every request as one generation of a run directory.
 #include <unistd.h>
 
 #include <atomic>
@@ -19,6 +20,7 @@
 #include "evolver/farm/farm_evaluator.h"
 #include "evolver/farm/farm_protocol.h"
 #include "evolver/serve/eval_service.h"
+#include "evolver/serve/service_run.h"
 #include "modules/core/genome_vector.h"
 #include "modules/core/random.h"
 #include "sim/core/constants.h"
@@ -51,6 +53,9 @@ int main(int argc, char** argv) {
   settings.shape.rules = 30;
   int workers = -1;
   double job_deadline = 300, worker_wait = 60;
+  std::string out_dir, resume_dir, optimizer = "external";
+  ev::ServiceRun run;
+  bool overwrite = false;
   app.add_option("--variant", variant, "the shape of vector genomes: ahhs1 or ahhs2")
       ->check(cli::IsMember({"ahhs1", "ahhs2"}))
       ->capture_default_str();
@@ -82,13 +87,42 @@ int main(int argc, char** argv) {
   app.add_option("--worker-wait", worker_wait, "seconds without any worker before a request fails")
       ->check(cli::PositiveNumber)
       ->capture_default_str();
+  app.add_option(
+      "--out", out_dir,
+      "record the run in this directory: each request one generation (docs/protocol.md)");
+  app.add_option("--resume", resume_dir, "go on recording the run in this directory");
+  app.add_option("--population", run.population, "--out: genomes per generation (per request)")
+      ->check(cli::Range(1, ev::kMaxServiceBatch));
+  app.add_option("--generations", run.generations, "--out: generations of the run")
+      ->check(cli::Range(1, 10000000));
+  app.add_option("--optimizer", optimizer, "--out: the optimizer's name, stored with the run")
+      ->capture_default_str();
+  app.add_flag("--overwrite", overwrite, "--out: replace a run already in the directory");
   ahhs::base::SetVersion(app, {ahhs::bus::WireVersionLine(), ahhs::evolver::FarmVersionLine(),
                                ahhs::evolver::ServiceVersionLine(), ahhs::sim::PhysicsVersionLine(),
                                ahhs::modules::GenomeVectorLine()});
   if (const int code = ahhs::base::Parse(app, argc, argv); code >= 0) return code;
 
   ev::FarmOptions farm_options;
+  std::unique_ptr<ev::RunStore> store;
   try {
+    if (!out_dir.empty() && !resume_dir.empty())
+      throw std::invalid_argument("give --out or --resume, not both");
+    if (!resume_dir.empty())
+      for (const char* name : {"--scenario", "--joints", "--modules", "--duration", "--variant",
+                               "--hormones", "--rules", "--trials", "--aggregate", "--seed",
+                               "--population", "--generations", "--optimizer", "--overwrite"})
+        if (app.count(name))
+          throw std::invalid_argument(std::string(name) +
+                                      " cannot be given with --resume: the run keeps its own");
+    if (!resume_dir.empty() && envelope.given())
+      throw std::invalid_argument(
+          "--envelope cannot be given with --resume: the run keeps its own");
+    if (!out_dir.empty() && (run.population == 0 || run.generations == 0))
+      throw std::invalid_argument("--out needs --population and --generations");
+    if (out_dir.empty() && resume_dir.empty() &&
+        (app.count("--population") || app.count("--generations") || app.count("--overwrite")))
+      throw std::invalid_argument("--population, --generations and --overwrite go with --out");
     settings.task = task.Config();
     settings.task.envelope = envelope.Resolve();
     const std::string error = ahhs::sim::CheckConfig(settings.task);
@@ -100,7 +134,38 @@ int main(int argc, char** argv) {
     settings.shape.actuators = probe->num_actuators();
     settings.aggregate = ev::ParseAggregate(aggregate);
     farm_options.run = ahhs::base::HostName() + "-" + std::to_string(getpid()) + "-evaluate";
-    farm_options.config = settings.task;
+    if (!out_dir.empty() || !resume_dir.empty()) {
+      ev::EvolveConfig config;
+      config.scenario = settings.task;
+      config.variant = settings.shape.variant;
+      config.hormones = settings.shape.hormones;
+      config.rules = settings.shape.rules;
+      config.ga.population = run.population;
+      config.ga.generations = run.generations;
+      config.ga.trials = settings.trials;
+      config.ga.aggregate = settings.aggregate;
+      config.seed = settings.seed;
+      config.optimizer = optimizer;
+      store = ev::OpenServiceRun(resume_dir.empty() ? out_dir : resume_dir, !resume_dir.empty(),
+                                 overwrite, farm_options.run, &config);
+      settings.task = config.scenario;
+      settings.shape = config.shape();
+      settings.trials = config.ga.trials;
+      settings.aggregate = config.ga.aggregate;
+      settings.seed = config.seed;
+      run.store = store.get();
+      run.optimizer = config.optimizer;
+      run.population = config.ga.population;
+      run.generations = config.ga.generations;
+      std::string command_line;
+      for (int a = 0; a < argc; ++a) command_line += (a ? " " : "") + std::string(argv[a]);
+      run.session = store->BeginSession(command_line);
+      run.seconds = [] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+            .count();
+      };
+    }
+    farm_options.config = settings.task;  // (a resumed run's own)
     farm_options.population = ev::kMaxServiceBatch;
     farm_options.trials = settings.trials;
     farm_options.lease.job_deadline =
@@ -124,7 +189,7 @@ int main(int argc, char** argv) {
     hooks.interrupted = [] { return g_interrupts > 0; };
     hooks.report = [](const std::string& text) { std::cerr << "ahhs-evaluate: " << text << '\n'; };
     ev::FarmEvaluator farm(bus.get(), farm_options, hooks);
-    ev::EvalService service(settings, farm);
+    ev::EvalService service(settings, farm, run.store ? &run : nullptr);
     std::cout << service.Hello().dump() << std::endl;
     std::string line;
     while (g_interrupts == 0 && std::getline(std::cin, line)) {

@@ -82,6 +82,7 @@ json ConfigToJson(const EvolveConfig& c) {
                         {"envelope", EnvelopeToJson(c.post_eval_envelope)}};
   if (c.validation > 0)
     doc["validation"] = {{"episodes", c.validation}, {"candidates", c.validation_candidates}};
+  if (!c.optimizer.empty()) doc["optimizer"] = c.optimizer;
   return doc;
 }
 
@@ -110,6 +111,7 @@ EvolveConfig ConfigFromJson(const json& doc) {
       c.validation = doc.at("validation").at("episodes").get<int>();
       c.validation_candidates = doc.at("validation").at("candidates").get<int>();
     }
+    if (doc.contains("optimizer")) c.optimizer = doc.at("optimizer").get<std::string>();
   } catch (const json::exception& e) {
     throw std::invalid_argument(std::string("run config: ") + e.what());
   }

@@ -34,6 +34,10 @@ struct EvolveConfig {
   // by their median on `validation` episodes of the training envelope (0: the highest fitness).
   int validation = 0;
   int validation_candidates = 10;
+  // "" for the paper's GA (ahhs-evolve); else the name of the optimizer whose generations
+  // ahhs-evaluate --out recorded (docs/protocol.md): the GA's settings other than population,
+  // generations, trials and aggregate then mean nothing, and every genome is stored in full.
+  std::string optimizer;
 
   // The genome shape: sensors and actuators come from the scenario.
   modules::Shape shape() const;

@@ -133,6 +133,10 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
           "configuration");
     store = RunStore::Open(o.resume_dir, o.show_config ? StoreAccess::kRead : StoreAccess::kWrite);
     *config = ConfigFromJson(store->config());
+    if (!config->optimizer.empty())
+      throw std::invalid_argument(o.resume_dir + " is a run of " + config->optimizer +
+                                  " recorded by ahhs-evaluate, not of the GA: resume it with "
+                                  "that optimizer");
     const std::string physics = sim::PhysicsVersion(config->scenario.kind, config->scenario.joints);
     if (!store->physics().empty() && store->physics() != physics)
       throw std::invalid_argument(o.resume_dir + " was made with the " +

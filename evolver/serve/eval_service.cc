@@ -37,31 +37,38 @@ std::uint64_t SeedOf(const json& v) {
 
 }  // namespace
 
-EvalService::EvalService(ServiceSettings settings, FitnessEvaluator& evaluator)
-    : settings_(std::move(settings)), evaluator_(evaluator) {}
+EvalService::EvalService(ServiceSettings settings, FitnessEvaluator& evaluator, ServiceRun* run)
+    : settings_(std::move(settings)), evaluator_(evaluator), run_(run) {}
 
 json EvalService::Hello() const {
   json envelope = json::object();
   for (const auto& k : sim::EnvelopeKeys()) envelope[k.name] = settings_.task.envelope.*k.field;
   const modules::Shape& s = settings_.shape;
-  return {{"v", kServiceProtocolVersion},
-          {"service", "ahhs-evaluate"},
-          {"scenario", sim::ScenarioName(settings_.task.kind)},
-          {"joints", sim::JointsName(settings_.task.joints)},
-          {"modules", settings_.task.num_modules},
-          {"duration", settings_.task.duration},
-          {"shape",
-           {{"variant", modules::VariantName(s.variant)},
-            {"hormones", s.hormones},
-            {"rules", s.rules},
-            {"sensors", s.sensors},
-            {"actuators", s.actuators}}},
-          {"vector_size", modules::GenomeVectorLayout(s).size()},
-          {"trials", settings_.trials},
-          {"aggregate", AggregateName(settings_.aggregate)},
-          {"envelope", envelope},
-          {"descriptor", episode::FitnessMonitor::DescriptorNames(settings_.task.kind)},
-          {"max_batch", kMaxServiceBatch}};
+  json hello = {{"v", kServiceProtocolVersion},
+                {"service", "ahhs-evaluate"},
+                {"scenario", sim::ScenarioName(settings_.task.kind)},
+                {"joints", sim::JointsName(settings_.task.joints)},
+                {"modules", settings_.task.num_modules},
+                {"duration", settings_.task.duration},
+                {"shape",
+                 {{"variant", modules::VariantName(s.variant)},
+                  {"hormones", s.hormones},
+                  {"rules", s.rules},
+                  {"sensors", s.sensors},
+                  {"actuators", s.actuators}}},
+                {"vector_size", modules::GenomeVectorLayout(s).size()},
+                {"trials", settings_.trials},
+                {"aggregate", AggregateName(settings_.aggregate)},
+                {"envelope", envelope},
+                {"descriptor", episode::FitnessMonitor::DescriptorNames(settings_.task.kind)},
+                {"max_batch", kMaxServiceBatch}};
+  if (run_)
+    hello["run"] = {{"dir", run_->store->dir()},
+                    {"optimizer", run_->optimizer},
+                    {"population", run_->population},
+                    {"generations", run_->generations},
+                    {"next_generation", run_->store->LastGeneration() + 1}};
+  return hello;
 }
 
 json EvalService::Handle(const std::string& line) {
@@ -92,8 +99,31 @@ json EvalService::Handle(const std::string& line) {
 
 json EvalService::Ask(const json& request) {
   for (const auto& [key, value] : request.items())
-    if (key != "v" && key != "id" && key != "seed" && key != "genomes")
+    if (key != "v" && key != "id" && key != "seed" && key != "genomes" &&
+        !(run_ && key == "generation"))
       throw BadRequest("unknown key '" + key + "'");
+  int generation = -1;
+  if (run_) {
+    const int last = run_->store->LastGeneration();
+    if (!request.contains("generation") || !request["generation"].is_number_integer() ||
+        request["generation"].get<std::int64_t>() < 0)
+      throw BadRequest("generation: this service records a run; say which generation (from 0)");
+    if (request.contains("seed")) throw BadRequest("seed: a run's seeds are the run's own");
+    const std::int64_t g = request["generation"].get<std::int64_t>();
+    if (g >= run_->generations)
+      throw BadRequest("generation " + std::to_string(g) + ": the run has " +
+                       std::to_string(run_->generations) + " generations");
+    if (g > last + 1)
+      throw BadRequest(
+          "generation " + std::to_string(g) + ": the run holds " +
+          (last < 0 ? std::string("none yet") : "generations 0 to " + std::to_string(last)) +
+          "; ask generation " + std::to_string(last + 1) + " next");
+    generation = static_cast<int>(g);
+    if (!request.contains("genomes") || !request["genomes"].is_array() ||
+        request["genomes"].size() != static_cast<std::size_t>(run_->population))
+      throw BadRequest("genomes: a generation of this run has " + std::to_string(run_->population) +
+                       " genomes");
+  }
   if (!request.contains("genomes") || !request["genomes"].is_array())
     throw BadRequest("genomes: an array of genome documents or {\"vector\": [...]}");
   const json& docs = request["genomes"];
@@ -123,7 +153,10 @@ json EvalService::Ask(const json& request) {
   }
   const std::uint64_t n = requests_++;
   const std::uint64_t seed =
-      request.contains("seed") ? SeedOf(request["seed"]) : modules::DeriveSeed(settings_.seed, {n});
+      run_ ? modules::DeriveSeed(settings_.seed, {static_cast<std::uint64_t>(generation)})
+      : request.contains("seed") ? SeedOf(request["seed"])
+                                 : modules::DeriveSeed(settings_.seed, {n});
+  const double start = run_ && run_->seconds ? run_->seconds() : 0;
   std::vector<EvaluationJob> jobs;
   for (std::size_t i = 0; i < genomes.size(); ++i)
     for (int t = 0; t < settings_.trials; ++t) {
@@ -171,7 +204,53 @@ json EvalService::Ask(const json& request) {
                        {"genome_hash", modules::GenomeHashText(genomes[i])},
                        {"trials", std::move(trials)}});
   }
-  return {{"v", kServiceProtocolVersion}, {"seed", seed}, {"results", std::move(results)}};
+  json answer = {{"v", kServiceProtocolVersion}, {"seed", seed}, {"results", results}};
+  if (run_) {
+    answer["generation"] = generation;
+    Record(generation, genomes, jobs, out, results, start);
+  }
+  return answer;
+}
+
+void EvalService::Record(int generation, const std::vector<modules::Genome>& genomes,
+                         const std::vector<EvaluationJob>& jobs, const std::vector<Evaluation>& out,
+                         const json& results, double start) {
+  const auto k = static_cast<std::size_t>(settings_.trials);
+  std::vector<IndividualRecord> records;
+  std::vector<double> fitness;
+  for (std::size_t i = 0; i < genomes.size(); ++i) {
+    IndividualRecord r;
+    r.generation = generation;
+    r.index = static_cast<int>(i);
+    r.genome = genomes[i];
+    r.eval_seed = jobs[i * k].seed;
+    r.evaluation = out[i * k];  // worker, timings and message of the first trial
+    r.evaluation.fitness = results[i].at("fitness").get<double>();
+    if (settings_.trials > 1)
+      for (std::size_t t = 0; t < k; ++t)
+        r.trials.push_back({static_cast<int>(t), jobs[i * k + t].seed, out[i * k + t]});
+    fitness.push_back(r.evaluation.fitness);
+    records.push_back(std::move(r));
+  }
+  RunStore& store = *run_->store;
+  if (generation <= store.LastGeneration()) {
+    const std::vector<IndividualRecord> stored = store.LoadGeneration(generation);
+    for (std::size_t i = 0; i < records.size(); ++i)
+      if (i >= stored.size() ||
+          modules::GenomeHashText(stored[i].genome) != modules::GenomeHashText(records[i].genome) ||
+          stored[i].evaluation.fitness != records[i].evaluation.fitness)
+        throw BadRequest("generation " + std::to_string(generation) + ": genomes[" +
+                         std::to_string(i) +
+                         "] is not what the run holds for it (an optimizer state that does not "
+                         "belong to this run?)");
+    return;  // asked again after a resume: answered, already stored
+  }
+  GenerationRecord record;
+  record.generation = generation;
+  record.stats = Summarise(fitness);
+  record.wall_time = run_->seconds ? run_->seconds() - start : 0;
+  record.session = run_->session;
+  store.CommitGeneration(record, records);
 }
 
 }  // namespace ahhs::evolver

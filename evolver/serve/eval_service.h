@@ -19,10 +19,12 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "evolver/ga/ga.h"
+#include "evolver/store/run_store.h"
 #include "modules/core/genome.h"
 #include "sim/core/scenario.h"
 
@@ -42,9 +44,25 @@ struct ServiceSettings {
   std::uint64_t seed = 1;  // request seeds when a request gives none: DeriveSeed(seed, {n})
 };
 
+// A service that records what it answers as a run (ahhs-evaluate --out; docs/protocol.md,
+// "Evaluation service", "A run of your optimizer"): every request is one generation of
+// `population` genomes, named by its "generation" and seeded by the run, committed to `store`
+// in order; a generation the store already holds is evaluated again and must give what it holds
+// (an optimizer resumed from a checkpoint older than the store). ServiceSettings::seed is then
+// the run's seed: generation g's request seed is DeriveSeed(seed, {g}).
+struct ServiceRun {
+  RunStore* store = nullptr;
+  std::string optimizer;
+  int population = 0;
+  int generations = 0;
+  int session = 0;
+  std::function<double()> seconds;  // wall clock for the generation records (any origin)
+};
+
 class EvalService {
  public:
-  EvalService(ServiceSettings settings, FitnessEvaluator& evaluator);
+  // `run` (may be null: no run) must outlive the service.
+  EvalService(ServiceSettings settings, FitnessEvaluator& evaluator, ServiceRun* run = nullptr);
 
   // The first line the service writes.
   nlohmann::json Hello() const;
@@ -54,9 +72,14 @@ class EvalService {
 
  private:
   nlohmann::json Ask(const nlohmann::json& request);
+  // Commits an evaluated generation to the run, or checks it against the stored one.
+  void Record(int generation, const std::vector<modules::Genome>& genomes,
+              const std::vector<EvaluationJob>& jobs, const std::vector<Evaluation>& out,
+              const nlohmann::json& results, double start);
 
   ServiceSettings settings_;
   FitnessEvaluator& evaluator_;
+  ServiceRun* run_;
   std::uint64_t requests_ = 0;
 };
 

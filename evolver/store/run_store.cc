@@ -233,7 +233,9 @@ std::uint64_t RunStore::BreedingSeed() const {
 }
 
 bool RunStore::StoresInFull(int generation) const {
-  return format_version_ < 2 || generation % kGenomeCheckpoint == 0;
+  // A run of another optimizer (ahhs-evaluate --out) cannot be bred again: every genome in full.
+  return format_version_ < 2 || generation % kGenomeCheckpoint == 0 ||
+         config_.contains("optimizer");
 }
 
 const std::vector<modules::Genome>& RunStore::Rederive(int generation) const {

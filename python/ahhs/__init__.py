@@ -1,4 +1,5 @@
-"""AHHS from Python: genome vectors and the evaluation service's client (python/README.md)."""
+"""AHHS from Python: genome vectors, the evaluation service's client, MAP-Elites (ahhs.qd) and
+resumable searches over the service (ahhs.search); python/README.md."""
 from .evaluate import EvaluationError, Evaluator, find_service
 from .vector import Shape, from_vector, layout, to_vector
 

@@ -79,11 +79,12 @@ class Evaluator:
         gait."""
         return list(self.hello["descriptor"])
 
-    def evaluate(self, genomes, seed=None, request_id=None):
+    def evaluate(self, genomes, seed=None, request_id=None, generation=None):
         """Evaluates a batch: each genome a document (dict) or a vector (sequence of numbers).
         Returns one result per genome: {"fitness", "descriptor", "genome_hash",
         "trials": [{"seed", "fitness", "descriptor"}]} (a descriptor is None for an episode that
         failed; the result's is the mean of its trials').
+        A service that records a run (--out, --resume) takes `generation` instead of a seed.
         Raises EvaluationError with the service's message for a bad request."""
         batch = [g if isinstance(g, dict) else {"vector": [float(v) for v in g]} for g in genomes]
         request = {"v": PROTOCOL_VERSION, "genomes": batch}
@@ -91,6 +92,8 @@ class Evaluator:
             request["seed"] = int(seed)
         if request_id is not None:
             request["id"] = request_id
+        if generation is not None:
+            request["generation"] = int(generation)
         self._proc.stdin.write(json.dumps(request) + "\n")
         self._proc.stdin.flush()
         line = self._proc.stdout.readline()

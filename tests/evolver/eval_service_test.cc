@@ -2,8 +2,12 @@
 // golden answers, trial seeds, aggregates, and one error answer per bad request.
 #include "evolver/serve/eval_service.h"
 
-#include <catch2/catch.hpp>
+#include <stdlib.h>
 
+#include <catch2/catch.hpp>
+#include <filesystem>
+
+#include "evolver/serve/service_run.h"
 #include "modules/core/genome_json.h"
 #include "modules/core/genome_vector.h"
 #include "modules/core/random.h"
@@ -129,4 +133,89 @@ TEST_CASE("a bad request gets one error line naming what is wrong, and nothing i
       modules::GenomeToJson(modules::RandomGenome({modules::Variant::kAhhs2, 2, 3, 10, 2}, rng));
   CHECK_THAT(error(json{{"v", 2}, {"genomes", {pendulum}}}.dump()), Catch::Contains("genomes[0]"));
   CHECK(f.batches == 0);
+}
+
+namespace {
+
+struct ServiceRunDir {  // a fresh directory, removed at the end
+  ServiceRunDir() {
+    char tmpl[] = "/tmp/ahhs-service-run-XXXXXX";
+    path = mkdtemp(tmpl);
+    path += "/run";
+  }
+  ~ServiceRunDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(std::filesystem::path(path).parent_path(), ec);
+  }
+  std::string path;
+};
+
+}  // namespace
+
+TEST_CASE("a service that records a run commits one generation per request, in order") {
+  ServiceRunDir dir;
+  SeedFitness f;
+  evolver::EvolveConfig config;
+  config.scenario = Settings().task;
+  config.variant = modules::Variant::kAhhs2;
+  config.hormones = 2;
+  config.rules = 3;
+  config.ga.population = 2;
+  config.ga.generations = 3;
+  config.ga.trials = 3;
+  config.ga.aggregate = evolver::Aggregate::kMedian;
+  config.seed = 9;
+  config.optimizer = "test";
+  auto store = evolver::OpenServiceRun(dir.path, false, false, "run-1", &config);
+  evolver::ServiceRun run;
+  run.store = store.get();
+  run.optimizer = "test";
+  run.population = 2;
+  run.generations = 3;
+  evolver::EvalService service(Settings(), f, &run);
+  CHECK(service.Hello().at("run").at("next_generation") == 0);
+  std::string vector = json(std::vector<double>(45, 0.5)).dump();
+  std::string other = json(std::vector<double>(45, 0.25)).dump();
+  const auto ask = [&](const std::string& generation, const std::string& extra = "") {
+    return service.Handle(R"({"v": 2, )" + extra + R"("generation": )" + generation +
+                          R"(, "genomes": [{"vector": )" + vector + R"(}, {"vector": )" + other +
+                          "}]}");
+  };
+  const auto error = [](const json& a) {
+    return a.contains("error") ? a.at("error").get<std::string>() : "";
+  };
+  CHECK_THAT(error(ask("1")), Catch::Contains("ask generation 0 next"));
+  CHECK_THAT(error(ask("0", R"("seed": 4, )")), Catch::Contains("the run's own"));
+  CHECK_THAT(error(service.Handle(R"({"v": 2, "genomes": [{"vector": )" + vector + "}]}")),
+             Catch::Contains("say which generation"));
+  const json g0 = ask("0");
+  REQUIRE(error(g0).empty());
+  CHECK(g0.at("generation") == 0);
+  CHECK(g0.at("seed") == modules::DeriveSeed(9, {0}));  // the run's seed, not a request's
+  REQUIRE(store->LastGeneration() == 0);
+  const auto stored = store->LoadGeneration(0);
+  REQUIRE(stored.size() == 2);
+  CHECK(stored[1].evaluation.fitness == g0.at("results")[1].at("fitness").get<double>());
+  CHECK(stored[1].trials.size() == 3);
+  CHECK(stored[1].eval_seed == g0.at("results")[1].at("trials")[0].at("seed").get<std::uint64_t>());
+  // Asked again (an optimizer resumed from an older checkpoint): the same answer, nothing added.
+  CHECK(ask("0") == g0);
+  CHECK(store->LastGeneration() == 0);
+  // Other genomes for a stored generation: refused.
+  std::swap(vector, other);
+  CHECK_THAT(error(ask("0")), Catch::Contains("not what the run holds"));
+  CHECK_THAT(error(service.Handle(R"({"v": 2, "generation": 1, "genomes": [{"vector": )" + vector +
+                                  "}]}")),
+             Catch::Contains("a generation of this run has 2 genomes"));
+  REQUIRE(error(ask("1")).empty());
+  REQUIRE(error(ask("2")).empty());
+  CHECK_THAT(error(ask("3")), Catch::Contains("the run has 3 generations"));
+  CHECK(store->LastGeneration() == 2);
+  // Every genome is stored in full (another optimizer's generations cannot be bred again).
+  store.reset();
+  auto reread = evolver::RunStore::Open(dir.path, evolver::StoreAccess::kRead);
+  CHECK(modules::GenomeHashText(reread->LoadGeneration(1)[0].genome) ==
+        modules::GenomeHashText(
+            modules::GenomeFromVector(Settings().shape, std::vector<double>(45, 0.25))));
+  CHECK(reread->config().at("optimizer") == "test");
 }

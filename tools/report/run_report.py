@@ -65,7 +65,10 @@ def report_runs(args):
             md += [f"| {a} | {b} | {na} | {nb} | {u:g} | {p:.4g} |" for a, b, na, nb, u, p in tests]
     md += ["", "## Runs", ""] + [f"- `{r.path}`: {r.label}, seed {r.config['seed']}, "
                                  f"{len(r.generation)} generations, best {r.best_overall():.4f}"
+                                 + (f" ({r.config['optimizer']})" if "optimizer" in r.config else "")
                                  for r in runs]
+    for r in runs:  # MAP-Elites runs (examples/optimizers/map_elites.py) keep an archive
+        md += archive_heatmap(r, args.out, written)
     if not args.no_replay:
         bin_dir = find_bin(args)
         first = runs[0]
@@ -98,6 +101,44 @@ def report_runs(args):
     with open(summary, "w") as f:
         f.write("\n".join(md) + "\n")
     print(f"report written to {args.out}: summary.md and {len(written)} files")
+
+
+def archive_heatmap(run, out_dir, written):
+    """A run's MAP-Elites archive (RUN/archive.json) as a heatmap of its cells' fitness over the
+    two descriptor values; the Markdown lines that describe it. Nothing when there is none."""
+    path = os.path.join(run.path, "archive.json")
+    if not os.path.exists(path):
+        return []
+    try:
+        with open(path) as f:
+            a = json.load(f)
+        dims, ranges, names = a["dims"], a["ranges"], a["descriptor"]
+        grid = np.full((dims[1], dims[0]), np.nan)
+        for c in a["cells"]:
+            grid[c["cell"][1], c["cell"][0]] = c["fitness"]
+    except (OSError, ValueError, KeyError, IndexError, TypeError) as e:
+        raise ReportError(f"{path}: not a readable archive ({e})")
+    fig, ax = plt.subplots(figsize=(6.4, 5.2))
+    image = ax.imshow(grid, origin="lower", aspect="auto", cmap="viridis",
+                      extent=[ranges[0][0], ranges[0][1], ranges[1][0], ranges[1][1]])
+    fig.colorbar(image, ax=ax, label="fitness of the cell's elite")
+    ax.set_xlabel(names[0])
+    ax.set_ylabel(names[1])
+    ax.set_title(f"MAP-Elites archive after generation {a['generation']}: "
+                 f"{len(a['cells'])} of {dims[0] * dims[1]} cells (empty: white)")
+    name = "archive-" + os.path.basename(os.path.normpath(run.path))
+    save(fig, out_dir, name, written)
+    best = max(a["cells"], key=lambda c: c["fitness"]) if a["cells"] else None
+    md = ["", f"## The archive of `{run.path}`", "",
+          f"`{name}.png`: {len(a['cells'])} of {dims[0] * dims[1]} cells filled, "
+          f"QD score {a['stats']['qd_score']:.4f}."]
+    if best:
+        md.append(f"Its best cell {best['cell']} ({names[0]} {best['descriptor'][0]:.3f}, "
+                  f"{names[1]} {best['descriptor'][1]:.3f}, fitness {best['fitness']:.4f}) replays "
+                  f"with `ahhs-replay {run.path} --generation {best['generation']} --individual "
+                  f"{best['individual']}`; so does every cell, with its own generation and "
+                  "individual.")
+    return md
 
 
 def report_neighbourhood(args):

@@ -1,0 +1,95 @@
+"""A search whose generations are a run: every generation evaluated by ahhs-evaluate --out and
+recorded in RUN_DIR like an ahhs-evolve run (ahhs-report, ahhs-replay RUN --generation G
+--individual I and ahhs-view --run read it), and the optimizer checkpointed beside it after every
+generation (RUN_DIR/optimizer.pickle, written atomically), so that a search killed at any moment
+resumes from its checkpoint and ends as the uninterrupted one, bit for bit.
+
+An optimizer is any object with
+    ask() -> a batch of genome vectors (docs/genome.md, "Genome vectors"), `population` of them;
+    tell(vectors, results): the service's results of that batch, in order;
+    after_generation(run_dir, generation, vectors, results) (optional): files of its own, such as
+        a MAP-Elites archive; called before the checkpoint, so a resume rewrites them.
+It must be picklable, and draw its random numbers from generators it holds (or from numpy's and
+Python's global ones, which the checkpoint saves too).
+"""
+import os
+import pickle
+import random
+
+import numpy as np
+
+from .evaluate import Evaluator
+
+CHECKPOINT = "optimizer.pickle"
+
+
+def _save(run_dir, state):
+    path = os.path.join(run_dir, CHECKPOINT)
+    tmp = path + ".tmp"
+    with open(tmp, "wb") as f:
+        pickle.dump(state, f)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, path)
+
+
+def _load(run_dir):
+    path = os.path.join(run_dir, CHECKPOINT)
+    if not os.path.exists(path):
+        return None
+    with open(path, "rb") as f:
+        return pickle.load(f)
+
+
+def write_json_atomically(path, doc):
+    """For after_generation's files: never half-written."""
+    import json
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        json.dump(doc, f, indent=1)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, path)
+
+
+def run_search(run_dir, make_optimizer, task=(), population=None, generations=None, name=None,
+               farm=(), binary=None, log=None):
+    """Runs (or resumes, when RUN_DIR holds a run) a search to its last generation and returns
+    the optimizer. `make_optimizer(evaluator)` makes a fresh one (a new run, or a run killed
+    before its first checkpoint); `task` are ahhs-evaluate's task options (scenario, shape,
+    trials, envelope, seed) and `farm` its farm options (workers, --lcm-url, arena kind), the only
+    ones a resume takes. `log(text)` gets one line per generation."""
+    resume = os.path.exists(os.path.join(run_dir, "run.sqlite"))
+    if resume:
+        options = ["--resume", run_dir] + list(farm)
+    else:
+        if population is None or generations is None or not name:
+            raise ValueError("a new run needs population, generations and name")
+        options = list(task) + ["--out", run_dir, "--population", population, "--generations",
+                                generations, "--optimizer", name] + list(farm)
+    with Evaluator(options, binary) as ev:
+        run = ev.hello["run"]
+        state = _load(run_dir) if resume else None
+        if state is None:
+            optimizer, generation = make_optimizer(ev), 0
+        else:
+            optimizer, generation = pickle.loads(state["optimizer"]), state["generation"]
+            np.random.set_state(state["numpy_random"])
+            random.setstate(state["random"])
+        if log and resume:
+            log("resuming %s at generation %d (the run holds %d)" %
+                (run_dir, generation, run["next_generation"]))
+        while generation < run["generations"]:
+            vectors = [list(map(float, x)) for x in optimizer.ask()]
+            results = ev.evaluate(vectors, generation=generation)
+            optimizer.tell(vectors, results)
+            if hasattr(optimizer, "after_generation"):
+                optimizer.after_generation(run_dir, generation, vectors, results)
+            generation += 1
+            # The optimizer pickled apart: the checkpoint's generation reads without its classes.
+            _save(run_dir, {"generation": generation, "optimizer": pickle.dumps(optimizer),
+                            "numpy_random": np.random.get_state(), "random": random.getstate()})
+            if log:
+                best = max(r["fitness"] for r in results)
+                log("generation %d of %d: best %.6g" % (generation - 1, run["generations"], best))
+    return optimizer

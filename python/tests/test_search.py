@@ -1,0 +1,123 @@
+"""The optimizer examples (examples/optimizers) on the pendulum against a real ahhs-evaluate (run
+inside a network namespace): CMA-ES and MAP-Elites runs killed with SIGKILL at a random
+generation and resumed end exactly as uninterrupted ones (every genome, seed and fitness of the
+run directory, and the archive); an archive cell replays to its fitness with ahhs-replay; the
+report draws the archive; ahhs-evolve refuses to resume such a run."""
+import json
+import os
+import random
+import signal
+import sqlite3
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+BIN = os.environ["AHHS_BIN"]
+SOURCE = os.environ["AHHS_SOURCE_DIR"]
+URL = "udpm://239.255.42.63:7754?ttl=0&recv_buf_size=4194304"
+TASK = ["--", "--scenario", "pendulum", "--variant", "ahhs2", "--hormones", "3", "--rules", "6",
+        "--trials", "2", "--envelope", "paper"]
+FARM = ["--farm", "--workers 2 --lcm-url " + URL, "--bin", BIN]
+
+
+def example(name):
+    return [sys.executable, os.path.join(SOURCE, "examples", "optimizers", name)]
+
+
+def dump(run_dir):
+    """Every individual and trial of a run, without timings or workers."""
+    db = sqlite3.connect(os.path.join(run_dir, "run.sqlite"))
+    rows = db.execute("SELECT generation, idx, genome_hash, eval_seed, fitness FROM individuals "
+                      "ORDER BY generation, idx").fetchall()
+    rows += db.execute("SELECT generation, idx, trial, seed, fitness FROM trials "
+                       "ORDER BY generation, idx, trial").fetchall()
+    db.close()
+    return rows
+
+
+def checkpoint_generation(run_dir):
+    path = os.path.join(run_dir, "optimizer.pickle")
+    try:
+        import pickle
+        with open(path, "rb") as f:
+            return pickle.load(f)["generation"]
+    except (OSError, EOFError, KeyError, ImportError, AttributeError, ValueError):
+        return 0
+
+
+def wait_for_service_to_end(run_dir, seconds=30):
+    """A killed search's ahhs-evaluate ends at the end of its input; until then it holds the run."""
+    end = time.time() + seconds
+    while time.time() < end:
+        if subprocess.run(["pgrep", "-f", "ahhs-evaluate.*" + run_dir],
+                          capture_output=True).returncode != 0:
+            return
+        time.sleep(0.05)
+    raise AssertionError("the killed search's ahhs-evaluate did not end")
+
+
+class SearchTest(unittest.TestCase):
+    def run_killed_and_whole(self, script, options, generations):
+        tmp = tempfile.mkdtemp(prefix="ahhs-search-")
+        whole, killed = os.path.join(tmp, "whole"), os.path.join(tmp, "killed")
+        argv = example(script) + options + ["--generations", str(generations)] + FARM + TASK
+        subprocess.run(argv[:2] + [whole] + argv[2:], check=True, capture_output=True)
+        at = random.Random().randint(2, generations - 3)
+        p = subprocess.Popen(argv[:2] + [killed] + argv[2:], stdout=subprocess.DEVNULL,
+                             stderr=subprocess.DEVNULL)
+        while checkpoint_generation(killed) < at and p.poll() is None:
+            time.sleep(0.002)
+        p.send_signal(signal.SIGKILL)
+        p.wait()
+        stored = checkpoint_generation(killed)
+        self.assertLess(stored, generations, "the search ended before the kill")
+        wait_for_service_to_end(killed)
+        out = subprocess.run(argv[:2] + [killed] + argv[2:], check=True, capture_output=True,
+                             text=True).stdout
+        self.assertIn("resuming %s at generation %d" % (killed, stored), out)
+        self.assertEqual(dump(whole), dump(killed), "killed after %d generations" % stored)
+        self.assertEqual(len(dump(whole)), generations * 8 * 3)
+        return whole, killed, stored
+
+    def test_cma_es_resumes_exactly(self):
+        whole, _, stored = self.run_killed_and_whole("cmaes.py", ["--population", "8"], 12)
+        print("cma-es: killed after %d generations, resumed: identical" % stored)
+        # The GA does not resume it.
+        out = subprocess.run([os.path.join(BIN, "ahhs-evolve"), "--resume", whole],
+                             capture_output=True, text=True)
+        self.assertNotEqual(out.returncode, 0)
+        self.assertIn("is a run of cma-es (deap) recorded by ahhs-evaluate", out.stderr)
+
+    def test_map_elites_resumes_exactly_and_its_cells_replay(self):
+        whole, killed, stored = self.run_killed_and_whole(
+            "map_elites.py", ["--batch", "8", "--cells", "5", "--sigma", "0.3"], 12)
+        with open(os.path.join(whole, "archive.json")) as f:
+            archive = json.load(f)
+        with open(os.path.join(killed, "archive.json")) as f:
+            self.assertEqual(json.load(f), archive)
+        print("map-elites: killed after %d generations, resumed: identical; %d cells" %
+              (stored, len(archive["cells"])))
+        self.assertEqual(archive["descriptor"], ["above_pivot", "at_wall"])
+        self.assertGreater(len(archive["cells"]), 1)
+        cell = max(archive["cells"], key=lambda c: c["fitness"])
+        out = subprocess.run([os.path.join(BIN, "ahhs-replay"), whole, "--generation",
+                              str(cell["generation"]), "--individual", str(cell["individual"])],
+                             capture_output=True, text=True, check=True).stdout
+        self.assertIn("reproduced exactly", out)
+        # The cell's fitness is its trials' mean: the replay's first trial is one of them.
+        db = sqlite3.connect(os.path.join(whole, "run.sqlite"))
+        (fitness,) = db.execute("SELECT fitness FROM individuals WHERE generation = ? AND idx = ?",
+                                (cell["generation"], cell["individual"])).fetchone()
+        self.assertEqual(fitness, cell["fitness"])
+        report = os.path.join(os.path.dirname(whole), "report")
+        subprocess.run([os.path.join(BIN, "ahhs-report"), whole, "-o", report, "--no-replay"],
+                       check=True, capture_output=True)
+        self.assertTrue(os.path.getsize(os.path.join(report, "archive-whole.png")) > 0)
+        with open(os.path.join(report, "summary.md")) as f:
+            self.assertIn("## The archive of", f.read())
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # ahhs-view in a real browser (headless Chromium, through ahhs-capture), live: a multi-process
-# arena, a viewer that goes away during a lockstep episode without stalling or changing it, and
-# a run being evolved (view_files_test.sh has logs, videos and filmstrips).
+# arena, a viewer that goes away during a lockstep episode without stalling or changing it,
+# a run being evolved, and a run another optimizer made through ahhs-evaluate --out
+# (view_files_test.sh has logs, videos and filmstrips).
 bin=${1:?usage: view_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_netns "$0" "$@"
-ahhs_scratch 'ahhs-view|ahhs-launch|ahhs-sim|ahhs-module|ahhs-fitness|ahhs-logger|ahhs-evolve|ahhs-worker'
+ahhs_scratch 'ahhs-view|ahhs-launch|ahhs-sim|ahhs-module|ahhs-fitness|ahhs-logger|ahhs-evolve|ahhs-evaluate|ahhs-worker'
 command -v chromium >/dev/null || { echo "chromium not installed (tools/install-deps)"; exit 77; }
 cd "$tmp"
 fixed=$AHHS_SOURCE_DIR/tests/fixtures/genomes/gait-fixed-ahhs2-20-seed1.json
@@ -86,5 +87,23 @@ python3 -c "import json,sys; s=json.loads(sys.argv[1]); assert s['run_generation
   fail "no switch to a newer best: $s"
 echo "  $(field "['title']" <<<"$s")"
 wait $evolve || fail "evolve: $(tail -3 evolve.out)"
+kill $view; wait $view
+
+echo "== 4. a run of another optimizer (ahhs-evaluate --out) is watched the same way"
+python3 - >requests <<'PY'
+import json
+for g in range(2):
+    print(json.dumps({"v": 2, "generation": g,
+                      "genomes": [{"vector": [0.3 + 0.2 * g + 0.1 * i] * 61} for i in range(2)]}))
+PY
+"$bin/ahhs-evaluate" --scenario gait --joints fixed --duration 5 --variant ahhs2 --hormones 3 \
+  --rules 4 --workers 1 --lcm-url "$url" --out orun --population 2 --generations 2 \
+  --optimizer test <requests >evaluate.out 2>&1 || fail "ahhs-evaluate --out: $(cat evaluate.out)"
+start_view --run orun --poll 0.2
+s=$(js 'new Promise(r => { const i = setInterval(() => { const s = ahhs.stats();
+      if (s.run_generation === 1) { clearInterval(i); r(s); } }, 100); })' \
+  --wait 'window.ahhs && ahhs.isReady()' --timeout 60)
+[[ $(field "['mode']" <<<"$s") == run ]] || fail "an optimizer's run: $s"
+echo "  $(field "['title']" <<<"$s")"
 kill $view; wait $view
 echo "PASS"

@@ -77,6 +77,9 @@ json ConfigToJson(const EvolveConfig& c) {
   GaParamsToJson(c.ga, &doc);
   // A paper run's config is what it always was: the new keys only when they are used.
   if (!c.scenario.envelope.none()) doc["envelope"] = EnvelopeToJson(c.scenario.envelope);
+  if (!c.scenario.pendulum.standard())
+    doc["pendulum"] = {{"actuator_gain", c.scenario.pendulum.actuator_gain},
+                       {"walls", sim::PendulumWallsName(c.scenario.pendulum.walls)}};
   if (c.post_eval > 0)
     doc["post_eval"] = {{"episodes", c.post_eval},
                         {"envelope", EnvelopeToJson(c.post_eval_envelope)}};
@@ -102,6 +105,11 @@ EvolveConfig ConfigFromJson(const json& doc) {
     c.ga = GaParamsFromJson(doc);
     c.seed = doc.at("seed").get<std::uint64_t>();
     if (doc.contains("envelope")) c.scenario.envelope = EnvelopeFromJson(doc.at("envelope"));
+    if (doc.contains("pendulum")) {
+      c.scenario.pendulum.actuator_gain = doc.at("pendulum").at("actuator_gain").get<double>();
+      c.scenario.pendulum.walls =
+          sim::ParsePendulumWalls(doc.at("pendulum").at("walls").get<std::string>());
+    }
     if (doc.contains("post_eval")) {
       const json& post = doc.at("post_eval");
       c.post_eval = post.at("episodes").get<int>();

@@ -122,7 +122,9 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
                              "--post-eval",
                              "--post-eval-envelope",
                              "--validation",
-                             "--validation-candidates"})
+                             "--validation-candidates",
+                             "--pendulum.actuator-gain",
+                             "--pendulum.walls"})
       if (app.count(name))
         throw std::invalid_argument(std::string(name) +
                                     " cannot be given with --resume: a resumed run keeps "

@@ -47,6 +47,12 @@ struct PendulumConstants {
   double noise = 0.023;              // uniform noise +-noise (fraction of the [0, 1] range)
   double cart_mass = 1.0;            // kg (reported in SIM/STATE only; the cart is driven)
   double bob_mass = 0.1;             // kg (reported only)
+  // Soft walls (pendulum.walls = soft): a spring-damper stop pushing the cart out of a wall,
+  // acceleration = stiffness x depth + damping x inward speed (never pulling): 44.7 rad/s, 0.7
+  // of critical damping; a cart at top speed stops within about 1.5 cm, one pushed by the
+  // motor rests 5 mm deep.
+  double soft_wall_stiffness = 2000;  // 1/s^2
+  double soft_wall_damping = 62.6;    // 1/s
 };
 
 enum class GaitSolver { kChain, kDantzig, kQuickStep };

@@ -17,7 +17,7 @@ double PendulumFitness(double cost, std::int64_t ticks) {
 }
 
 PendulumScenario::PendulumScenario(const ScenarioConfig& config, PendulumConstants constants)
-    : k_(constants), envelope_(config.envelope) {
+    : k_(constants), envelope_(config.envelope), choices_(config.pendulum) {
   total_ticks_ = EpisodeTicks(config.duration, k_.control_period, k_.ticks);
   Reset(0);
 }
@@ -89,8 +89,16 @@ void PendulumScenario::Integrate(double v_cmd) {
   // Derivatives of (x, v, phi, omega) with the cart speed following v_cmd through a first-order
   // lag. The pivot's acceleration a drives the pendulum: phi'' = (g sin phi + a cos phi) / l.
   // The first stage is at phi itself; the others are close to it.
+  const bool soft = choices_.walls == PendulumWalls::kSoft;
+  const double x_max = k_.wall_inner - k_.cart_half_width;
   auto deriv = [&](const double s[4], double d[4], bool at_phi) {
-    const double a = (v_cmd - s[1]) * inv_tau;
+    double a = (v_cmd - s[1]) * inv_tau;
+    if (soft && std::fabs(s[0]) > x_max) {  // in a soft wall: pushed out, never pulled in
+      const double side = s[0] > 0 ? 1.0 : -1.0;
+      const double depth = std::fabs(s[0]) - x_max;
+      a -=
+          side * std::max(0.0, k_.soft_wall_stiffness * depth + k_.soft_wall_damping * s[1] * side);
+    }
     double sin_phi = sin0, cos_phi = cos0;
     if (!at_phi) SinCosAt(phi0, sin0, cos0, s[2], &sin_phi, &cos_phi);
     d[0] = s[1];
@@ -111,10 +119,9 @@ void PendulumScenario::Integrate(double v_cmd) {
   for (int i = 0; i < 4; ++i) s[i] = s0[i] + h6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
   state_ = {s[0], s[1], s[2], s[3]};
 
-  // The cart stops dead at a wall; the sudden stop kicks the pendulum (integrated phi'' over
+  // A rigid wall stops the cart dead; the sudden stop kicks the pendulum (integrated phi'' over
   // the impulse: delta omega = delta v cos(phi) / l).
-  const double x_max = k_.wall_inner - k_.cart_half_width;
-  if (std::fabs(state_.x) >= x_max) {
+  if (!soft && std::fabs(state_.x) >= x_max) {
     state_.x = std::copysign(x_max, state_.x);
     if (state_.v * state_.x > 0) {
       double sin_phi, cos_phi;
@@ -129,7 +136,12 @@ void PendulumScenario::Integrate(double v_cmd) {
 StepStatus PendulumScenario::Step(const SubstepObserver& observer) {
   if (!error_.empty()) return StepStatus::kFailed;
   if (tick_ >= total_ticks_) return StepStatus::kFinished;
-  const double v_cmd = k_.max_speed * cart_speed_scale_ * (actuators_[1] - actuators_[0]) / 2.0;
+  const double v_cmd =
+      choices_.actuator_gain == 1
+          ? k_.max_speed * cart_speed_scale_ * (actuators_[1] - actuators_[0]) / 2.0
+          : k_.max_speed * cart_speed_scale_ *
+                std::clamp(choices_.actuator_gain * (actuators_[1] - actuators_[0]) / 2.0, -1.0,
+                           1.0);
   const int substeps = static_cast<int>(std::lround(k_.control_period / k_.integration_step));
   for (int i = 0; i < substeps; ++i) {
     Integrate(v_cmd);

@@ -73,6 +73,7 @@ class PendulumScenario final : public Scenario {
 
   PendulumConstants k_;
   Envelope envelope_;
+  PendulumChoices choices_;
   double cart_speed_scale_ = 1;  // this episode's envelope draw
   std::int64_t total_ticks_;
   PendulumState state_;

@@ -21,6 +21,15 @@ Joints ParseJoints(const std::string& name) {
   throw std::invalid_argument("unknown joints '" + name + "' (use damped or fixed)");
 }
 
+const char* PendulumWallsName(PendulumWalls walls) {
+  return walls == PendulumWalls::kRigid ? "rigid" : "soft";
+}
+PendulumWalls ParsePendulumWalls(const std::string& name) {
+  if (name == "rigid") return PendulumWalls::kRigid;
+  if (name == "soft") return PendulumWalls::kSoft;
+  throw std::invalid_argument("unknown pendulum walls '" + name + "' (use rigid or soft)");
+}
+
 const char* ScenarioName(ScenarioKind kind) {
   return kind == ScenarioKind::kGait ? "gait" : "pendulum";
 }
@@ -61,6 +70,13 @@ std::string CheckConfig(const ScenarioConfig& c) {
              " (CHANGELOG.md names the release that does)";
     }
   }
+  if (!std::isfinite(c.pendulum.actuator_gain) || c.pendulum.actuator_gain < 1 ||
+      c.pendulum.actuator_gain > 100)
+    return "pendulum.actuator-gain: from 1 to 100";
+  if (c.pendulum.walls != PendulumWalls::kRigid && c.pendulum.walls != PendulumWalls::kSoft)
+    return "pendulum.walls: rigid or soft";
+  if (c.kind == ScenarioKind::kGait && !c.pendulum.standard())
+    return "pendulum.actuator-gain and pendulum.walls are the pendulum's, not the gait's";
   return CheckEnvelope(c.envelope);
 }
 

@@ -18,6 +18,26 @@ namespace ahhs::sim {
 enum class ScenarioKind { kGait, kPendulum };
 enum class Joints { kDamped, kFixed };
 
+// Two choices the paper leaves open for the pendulum, as task settings (docs/scenarios.md,
+// "Choices the paper leaves open"), on the wire in RESET and EVAL/REQUEST. The defaults are the
+// task as it always was, bit for bit.
+enum class PendulumWalls { kRigid, kSoft };
+struct PendulumChoices {
+  // v_cmd = top speed x clamp(gain x (A1 - A0) / 2, -1, 1): small outputs count `gain` times
+  // as much, the crab is no faster. In [1, 100].
+  double actuator_gain = 1;
+  // Rigid: the cart stops dead at a wall (an impulse kicks the pendulum). Soft: a spring-damper
+  // stop (PendulumConstants::soft_wall_*).
+  PendulumWalls walls = PendulumWalls::kRigid;
+
+  bool operator==(const PendulumChoices& o) const {
+    return actuator_gain == o.actuator_gain && walls == o.walls;
+  }
+  bool standard() const { return *this == PendulumChoices{}; }
+};
+const char* PendulumWallsName(PendulumWalls walls);
+PendulumWalls ParsePendulumWalls(const std::string& name);  // throws std::invalid_argument
+
 struct ScenarioConfig {
   ScenarioKind kind = ScenarioKind::kGait;
   int num_modules = 5;              // gait: modules in the chain (>= 2); pendulum: always 2
@@ -38,6 +58,8 @@ struct ScenarioConfig {
   // The envelope of noise every episode of this configuration is perturbed with (a task
   // setting, on the wire in RESET and EVAL/REQUEST: sim/core/envelope.h).
   Envelope envelope;
+  // The pendulum's open choices (a task setting, on the wire in RESET and EVAL/REQUEST).
+  PendulumChoices pendulum;
 };
 
 // Parses "gait"/"pendulum" and "damped"/"fixed"; throw std::invalid_argument otherwise.

@@ -1,6 +1,7 @@
 // The task as command-line options, declared once for every tool that names one: --scenario,
-// --joints, --modules and --duration (sim/core/scenario.h). A bad name is a usage error with the
-// same message as the task's own parser ("unknown scenario 'walker' (use gait or pendulum)").
+// --joints, --modules, --duration and the pendulum's open choices (sim/core/scenario.h). A bad name
+// is a usage error with the same message as the task's own parser ("unknown scenario 'walker' (use
+// gait or pendulum)").
 #pragma once
 
 #include <stdexcept>
@@ -16,6 +17,8 @@ struct ScenarioOptions {
   std::string joints = "damped";
   int modules = 5;
   double duration = 0;  // s; 0: the task's
+  double pendulum_gain = 1;
+  std::string pendulum_walls = "rigid";
 
   // `context` begins every help text ("with --genome: "); `duration_help` says what the
   // duration means for this tool.
@@ -29,11 +32,24 @@ struct ScenarioOptions {
     app.add_option("--modules", modules, context + "gait: modules in the chain (>= 2)")
         ->capture_default_str();
     duration_opt_ = app.add_option("--duration", duration, context + duration_help);
+    app.add_option("--pendulum.actuator-gain", pendulum_gain,
+                   context +
+                       "pendulum: v = top speed x clamp(gain (A1 - A0) / 2, -1, 1), 1 to "
+                       "100 (docs/scenarios.md, \"Choices the paper leaves open\")")
+        ->capture_default_str();
+    app.add_option("--pendulum.walls", pendulum_walls,
+                   context + "pendulum: rigid (the cart stops dead) or soft (a spring-damper stop)")
+        ->check(NameCheck("WALLS", [](const std::string& s) { ParsePendulumWalls(s); }))
+        ->capture_default_str();
   }
   bool duration_given() const { return duration_opt_ && duration_opt_->count() > 0; }
   // The configuration the options name (the task's own checks still apply: CheckConfig).
   ScenarioConfig Config() const {
-    return MakeScenarioConfig(ParseScenarioKind(scenario), ParseJoints(joints), modules, duration);
+    ScenarioConfig c =
+        MakeScenarioConfig(ParseScenarioKind(scenario), ParseJoints(joints), modules, duration);
+    c.pendulum.actuator_gain = pendulum_gain;
+    c.pendulum.walls = ParsePendulumWalls(pendulum_walls);
+    return c;
   }
 
  private:

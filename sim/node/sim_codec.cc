@@ -117,6 +117,7 @@ std::int8_t JointsToWire(Joints joints) {
 
 std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_modules,
                                std::int8_t joints, double duration, const Envelope& envelope,
+                               double pendulum_actuator_gain, std::int8_t pendulum_walls,
                                ScenarioConfig* config) {
   ScenarioConfig c;
   if (scenario == "gait") {
@@ -135,6 +136,11 @@ std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_mod
   }
   c = MakeScenarioConfig(c.kind, c.joints, num_modules, duration);
   c.envelope = envelope;
+  if (pendulum_walls != 0 && pendulum_walls != 1)
+    return "unknown pendulum walls value " + std::to_string(pendulum_walls);
+  // 0 is the default too, so that a RESET made field by field without it asks for the task.
+  c.pendulum.actuator_gain = pendulum_actuator_gain == 0 ? 1 : pendulum_actuator_gain;
+  c.pendulum.walls = pendulum_walls == 1 ? PendulumWalls::kSoft : PendulumWalls::kRigid;
   const std::string error = CheckConfig(c);
   if (!error.empty()) return error;
   *config = c;

@@ -42,11 +42,13 @@ inline constexpr std::int64_t kSceneEveryTicks = 20;
 inline bool SceneDue(std::int64_t tick) { return tick % kSceneEveryTicks == 0; }
 
 // The one wire form of a ScenarioConfig: the fields (scenario, num_modules, joints, duration,
-// the envelope's half-widths) that sim_control_t (RESET) and eval_request_t both carry.
+// the envelope's half-widths, the pendulum's choices) that sim_control_t (RESET) and
+// eval_request_t both carry.
 std::int8_t JointsToWire(Joints joints);
-// Checks the four fields and makes the config; returns "" or why they are refused.
+// Checks the fields and makes the config; returns "" or why they are refused.
 std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_modules,
                                std::int8_t joints, double duration, const Envelope& envelope,
+                               double pendulum_actuator_gain, std::int8_t pendulum_walls,
                                ScenarioConfig* config);
 template <class Message>
 void ScenarioToWire(const ScenarioConfig& config, Message* m) {
@@ -64,6 +66,8 @@ void ScenarioToWire(const ScenarioConfig& config, Message* m) {
   m->envelope_sensor_noise = e.sensor_noise;
   m->envelope_start_angle = e.start_angle;
   m->envelope_cart_speed = e.cart_speed;
+  m->pendulum_actuator_gain = config.pendulum.actuator_gain;
+  m->pendulum_walls = config.pendulum.walls == PendulumWalls::kSoft ? 1 : 0;
 }
 template <class Message>
 std::string ScenarioFromWire(const Message& m, ScenarioConfig* config) {
@@ -77,7 +81,8 @@ std::string ScenarioFromWire(const Message& m, ScenarioConfig* config) {
   e.sensor_noise = m.envelope_sensor_noise;
   e.start_angle = m.envelope_start_angle;
   e.cart_speed = m.envelope_cart_speed;
-  return ScenarioFromFields(m.scenario, m.num_modules, m.joints, m.duration, e, config);
+  return ScenarioFromFields(m.scenario, m.num_modules, m.joints, m.duration, e,
+                            m.pendulum_actuator_gain, m.pendulum_walls, config);
 }
 
 // Validates a RESET and turns it into a scenario config; returns "" or why it is refused.

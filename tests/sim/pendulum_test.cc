@@ -269,3 +269,74 @@ TEST_CASE("pendulum: fitness landmarks", "[sim][pendulum]") {
   CHECK(PendulumFitness(0, 3000) == 1.0);
   CHECK(PendulumFitness(M_PI / 2 * 3000, 3000) == Approx(0.5));
 }
+
+TEST_CASE("pendulum: an actuator gain multiplies small outputs, clamped at the same top speed",
+          "[sim][pendulum][choices]") {
+  ScenarioConfig c = Pendulum();
+  c.pendulum.actuator_gain = 10;
+  PendulumScenario p(c);
+  p.Reset(4);
+  Drive(p, 0, 0.05);  // v_cmd = 1 m/s * clamp(10 * 0.05 / 2, -1, 1) = 0.25 m/s
+  p.Step();
+  CHECK(p.state().v == Approx(0.25 * (1 - std::exp(-0.175))).epsilon(1e-6));
+  Drive(p, -0.5, 0.5);                    // 10 * 1 / 2 = 5: clamped to the top speed, 1 m/s
+  for (int t = 0; t < 40; ++t) p.Step();  // 0.7 s: short of the wall
+  CHECK(p.state().v == Approx(1.0).epsilon(1e-3));
+  // Gain 1 is the task's mapping, bit for bit.
+  ScenarioConfig one = Pendulum();
+  one.pendulum.actuator_gain = 1;
+  PendulumScenario a(one), b(Pendulum());
+  a.Reset(9);
+  b.Reset(9);
+  for (int t = 0; t < 300; ++t) {
+    Drive(a, 0.3 * std::sin(t * 0.1), -0.7 * std::cos(t * 0.07));
+    Drive(b, 0.3 * std::sin(t * 0.1), -0.7 * std::cos(t * 0.07));
+    a.Step();
+    b.Step();
+  }
+  CHECK(a.state().x == b.state().x);
+  CHECK(a.state().phi == b.state().phi);
+}
+
+TEST_CASE("pendulum: a soft wall stops the cart within 2 cm and pushes it back out",
+          "[sim][pendulum][choices]") {
+  ScenarioConfig c = Pendulum();
+  c.pendulum.walls = PendulumWalls::kSoft;
+  PendulumScenario p(c);
+  p.Reset(3);
+  const double x_max = 1.0 - 0.1;
+  Drive(p, -1, 1);  // full speed into the right wall, and keep pushing
+  double deepest = 0;
+  for (int t = 0; t < 250; ++t) {
+    p.Step();
+    deepest = std::max(deepest, p.state().x - x_max);
+    REQUIRE(std::isfinite(p.state().phi));
+  }
+  CHECK(deepest > 0.005);  // it goes in, as a spring does
+  CHECK(deepest < 0.02);
+  // Pushed by the motor it rests 5 mm deep: (v_cmd / tau) / stiffness = 10 / 2000.
+  CHECK(p.state().x - x_max == Approx(0.005).epsilon(0.02));
+  CHECK(std::fabs(p.state().v) < 1e-3);
+  double s[10];
+  p.ReadSensors(1, s);
+  CHECK(s[kWallRight] >= 1 - 0.023);
+  CHECK(s[kWallRight] <= 1.0);
+  // Released, the wall pushes it out and never pulls it back in.
+  Drive(p, 0, 0);
+  for (int t = 0; t < 100; ++t) p.Step();
+  CHECK(p.state().x <= x_max);
+}
+
+TEST_CASE("pendulum: its choices are checked and are the pendulum's only", "[sim][choices]") {
+  ScenarioConfig c = Pendulum();
+  c.pendulum.actuator_gain = 0.5;
+  CHECK(CheckConfig(c) == "pendulum.actuator-gain: from 1 to 100");
+  c.pendulum.actuator_gain = 10;
+  CHECK(CheckConfig(c).empty());
+  c.kind = ScenarioKind::kGait;
+  CHECK(CheckConfig(c) ==
+        "pendulum.actuator-gain and pendulum.walls are the pendulum's, not the "
+        "gait's");
+  CHECK(ParsePendulumWalls("soft") == PendulumWalls::kSoft);
+  CHECK_THROWS_AS(ParsePendulumWalls("padded"), std::invalid_argument);
+}

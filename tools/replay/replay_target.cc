@@ -94,6 +94,17 @@ ReplayTarget ResolveTarget(const cli::App& app, const ReplayOptions& o,
         t.what += " (under the envelope of its run, " + ahhs::sim::EnvelopeName(envelope) + ")";
       }
     }
+    // ... and under its pendulum choices, unless options give them.
+    if (!app.count("--pendulum.actuator-gain") && !app.count("--pendulum.walls") &&
+        meta.is_object() && meta.contains("config") && meta["config"].is_object() &&
+        meta["config"].contains("pendulum")) {
+      try {
+        t.spec.config.pendulum = ev::ConfigFromJson(meta["config"]).scenario.pendulum;
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(o.genome_file + ": meta.config: " + e.what());
+      }
+      t.what += " (with its run's pendulum choices)";
+    }
     const auto stored_seed = am::StoredEvalSeed(meta);
     if (!app.count("--seed") && stored_seed) {
       t.spec.seed = *stored_seed;

@@ -45,7 +45,9 @@ const std::set<std::string>& EvolveKeys() {
                                           "envelope.start-offset",
                                           "envelope.sensor-noise",
                                           "envelope.start-angle",
-                                          "envelope.cart-speed"};
+                                          "envelope.cart-speed",
+                                          "pendulum.actuator-gain",
+                                          "pendulum.walls"};
   return keys;
 }
 

@@ -63,7 +63,10 @@ done
 
 echo "== every tool answers --version with version $version"
 for tool in "$P"/bin/*; do
-  first=$("$tool" --version 2>&1 | head -1) || fail "$(basename "$tool") --version failed"
+  # (All of it, then its first line: `| head -1` would close the pipe after one line, and a
+  # tool still writing its second one would die of SIGPIPE, a failure under pipefail.)
+  out=$("$tool" --version 2>&1) || fail "$(basename "$tool") --version failed: $out"
+  first=${out%%$'\n'*}
   [[ $first == "$(basename "$tool") $version" ]] || fail "$(basename "$tool") --version: '$first'"
 done
 "$P/bin/ahhs-evolve" --version | grep -q "farm protocol" || fail "ahhs-evolve --version names no farm protocol"

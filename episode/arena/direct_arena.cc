@@ -1,10 +1,8 @@
 #include "episode/arena/direct_arena.h"
 
-#include <ahhs/sim_state_t.hpp>
 #include <memory>
 
 #include "episode/fitness/fitness_monitor.h"
-#include "sim/node/sim_codec.h"
 
 namespace ahhs::episode {
 
@@ -38,12 +36,9 @@ EpisodeResult RunDirectEpisode(const EpisodeSpec& spec, const DirectObserver& ob
   const bool pendulum = spec.config.kind == sim::ScenarioKind::kPendulum;
   FitnessMonitor monitor(spec.config.kind, scenario->control_period(), scenario->total_ticks());
   std::vector<sim::BodyState> bodies;
-  sim_state_t state;
   auto observe_state = [&] {
     scenario->Bodies(&bodies);
-    sim::KeepMovingBodies(&bodies);
-    sim::FillStateMessage(bodies, 0, scenario->tick(), scenario->sim_time(), &state);
-    monitor.Add(state);
+    monitor.Add(scenario->sim_time(), bodies);
   };
   observe_state();
   while (true) {

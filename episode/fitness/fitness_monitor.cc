@@ -11,23 +11,50 @@ FitnessMonitor::FitnessMonitor(sim::ScenarioKind kind, double control_period,
                                std::int64_t total_ticks)
     : kind_(kind), period_(control_period), total_ticks_(total_ticks) {}
 
+namespace {
+struct BodyAt {
+  double x, y, z;
+  int module;
+};
+}  // namespace
+
 bool FitnessMonitor::Add(const sim_state_t& s) {
-  if (!std::isfinite(s.sim_time) || s.sim_time < last_time_) return false;  // out of order
-  const auto n = static_cast<std::size_t>(s.num_bodies);
-  for (std::size_t b = 0; b < n; ++b)
-    if (!std::isfinite(s.px[b]) || !std::isfinite(s.py[b]) || !std::isfinite(s.pz[b])) return false;
+  return AddState(s.sim_time, static_cast<std::size_t>(s.num_bodies), [&](std::size_t b) {
+    return BodyAt{s.px[b], s.py[b], s.pz[b], s.module[b]};
+  });
+}
+
+bool FitnessMonitor::Add(double sim_time, const std::vector<sim::BodyState>& bodies) {
+  // The moving bodies in order, as SIM/STATE lists them (sim::KeepMovingBodies).
+  moving_.clear();
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    if (bodies[b].mass > 0) moving_.push_back(b);
+  return AddState(sim_time, moving_.size(), [&](std::size_t i) {
+    const sim::BodyState& body = bodies[moving_[i]];
+    return BodyAt{body.position[0], body.position[1], body.position[2], body.module};
+  });
+}
+
+template <class Pos>
+bool FitnessMonitor::AddState(double sim_time, std::size_t n, const Pos& pos) {
+  if (!std::isfinite(sim_time) || sim_time < last_time_) return false;  // out of order
+  for (std::size_t b = 0; b < n; ++b) {
+    const BodyAt p = pos(b);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
+  }
   if (kind_ == sim::ScenarioKind::kPendulum) {
     if (n < 2) return false;
-    const double k = s.sim_time / period_;
+    const BodyAt cart = pos(0), bob = pos(1);
+    const double k = sim_time / period_;
     const double tick = std::round(k);
     if (std::fabs(k - tick) < 1e-9 && tick >= 1 && tick > static_cast<double>(ticks_)) {
       // phi from the bob's position relative to the pivot (the cart's centre): the bob sits at
       // (-l sin phi, l cos phi).
-      const double phi = std::atan2(s.px[0] - s.px[1], s.pz[1] - s.pz[0]);
+      const double phi = std::atan2(cart.x - bob.x, bob.z - cart.z);
       cost_ += std::fabs(phi);
       if (std::fabs(phi) < M_PI / 2) ++ticks_above_;
       const sim::PendulumConstants pendulum;
-      if (pendulum.wall_inner - std::fabs(s.px[0]) - pendulum.cart_half_width < kNearWall)
+      if (pendulum.wall_inner - std::fabs(cart.x) - pendulum.cart_half_width < kNearWall)
         ++ticks_near_wall_;
       ticks_ = static_cast<std::int64_t>(tick);
       ++ticks_with_state_;
@@ -37,9 +64,10 @@ bool FitnessMonitor::Add(const sim_state_t& s) {
     double c[2] = {0, 0};
     int count = 0;
     for (std::size_t b = 0; b < n; ++b) {
-      if (s.module[b] < 0) continue;
-      c[0] += s.px[b];
-      c[1] += s.py[b];
+      const BodyAt p = pos(b);
+      if (p.module < 0) continue;
+      c[0] += p.x;
+      c[1] += p.y;
       ++count;
     }
     if (count == 0) return false;
@@ -52,9 +80,9 @@ bool FitnessMonitor::Add(const sim_state_t& s) {
     }
     now_[0] = c[0];
     now_[1] = c[1];
-    ticks_ = static_cast<std::int64_t>(std::llround(s.sim_time / period_));
+    ticks_ = static_cast<std::int64_t>(std::llround(sim_time / period_));
   }
-  last_time_ = s.sim_time;
+  last_time_ = sim_time;
   ++states_;
   return true;
 }

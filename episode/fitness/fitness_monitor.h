@@ -21,6 +21,9 @@ class FitnessMonitor {
   // start, the latest one the end; fitness = centroid displacement / (1 m / 0.7).
   // Returns false (and ignores the state) when it is malformed.
   bool Add(const sim_state_t& state);
+  // The same for a state given as the scenario's bodies (scenery, module -1, is skipped as the
+  // sim leaves it out of SIM/STATE): the direct arena's, without a message copy per tick.
+  bool Add(double sim_time, const std::vector<sim::BodyState>& bodies);
 
   double fitness() const;
   double cost() const;
@@ -46,6 +49,10 @@ class FitnessMonitor {
   }
 
  private:
+  // One state: `pos(i)` is the i-th body's {x, y, z, module}, in message order.
+  template <class Pos>
+  bool AddState(double sim_time, std::size_t n, const Pos& pos);
+
   sim::ScenarioKind kind_;
   double period_;
   std::int64_t total_ticks_;
@@ -54,6 +61,7 @@ class FitnessMonitor {
   std::int64_t states_ = 0;
   double cost_ = 0;
   std::int64_t ticks_above_ = 0, ticks_near_wall_ = 0;  // pendulum
+  std::vector<std::size_t> moving_;                     // Add(bodies)'s scratch
   bool have_start_ = false;
   double start_[2] = {0, 0}, now_[2] = {0, 0};
   double last_time_ = -1;

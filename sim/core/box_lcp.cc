@@ -6,7 +6,7 @@
 
 namespace ahhs::sim {
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 constexpr int kFree = 1, kAtLo = 2, kAtHi = 3;
 }  // namespace
 
@@ -128,9 +128,9 @@ bool BoxLcp::Solve(int n, const double* s, const double* r, const double* lo, co
       for (int c : free_) {
         const auto uc = static_cast<std::size_t>(c);
         const double d = dir * dx_[uc];
-        double tc = kInf;
-        if (d > 0 && hi_[uc] < kInf) tc = (hi_[uc] - x[c]) / d;
-        if (d < 0 && lo_[uc] > -kInf) tc = (lo_[uc] - x[c]) / d;
+        double tc = kUnbounded;
+        if (d > 0 && hi_[uc] < kUnbounded) tc = (hi_[uc] - x[c]) / d;
+        if (d < 0 && lo_[uc] > -kUnbounded) tc = (lo_[uc] - x[c]) / d;
         if (tc < t) {
           t = tc;
           event = 2;
@@ -139,7 +139,7 @@ bool BoxLcp::Solve(int n, const double* s, const double* r, const double* lo, co
       }
       for (int j : bound_) {
         const auto uj = static_cast<std::size_t>(j);
-        double tj = kInf;
+        double tj = kUnbounded;
         if (state_[uj] == kAtLo && dw_[uj] < 0) tj = -w_[uj] / dw_[uj];
         if (state_[uj] == kAtHi && dw_[uj] > 0) tj = -w_[uj] / dw_[uj];
         if (tj < t) {

@@ -27,11 +27,12 @@ knife=$AHHS_SOURCE_DIR/tests/episode/data/knife-edge-damped-ahhs1-120.json
 grep -q "^original,2.7359187058763337," $tmp/nb3/mutants.csv || fail "neighbourhood --physics: $(cat $tmp/nb3/mutants.csv)"
 
 echo "== steps: the physics step judged by post-evaluated distributions"
-knife=$AHHS_SOURCE_DIR/tests/episode/data/knife-edge-damped-ahhs1-120.json
-"$bin/ahhs-report" steps $knife --episodes 2 --jobs 2 -o $tmp/steps >$tmp/steps.out 2>&1 ||
+# A run directory (its best, with the run's own physics, duration and envelope), then a genome
+# file with a named physics.
+"$bin/ahhs-report" steps $tmp/gait --episodes 2 --jobs 2 -o $tmp/steps >$tmp/steps.out 2>&1 ||
   { cat $tmp/steps.out; fail "steps"; }
 # One row per step, the task's step (6.25 ms) and twice it judged against half of it.
-[[ $(grep -c "knife-edge" $tmp/steps/steps.csv) == 3 ]] || fail "steps.csv: $(cat $tmp/steps/steps.csv)"
+[[ $(grep -c "/gait," $tmp/steps/steps.csv) == 3 ]] || fail "steps.csv: $(cat $tmp/steps/steps.csv)"
 grep -q "^| genome | 3.125 ms: median (quartiles), over the wall | 6.25 ms: " $tmp/steps/summary.md &&
   grep -Eq "^- 6.25 ms: (passes|does not pass)$" $tmp/steps/summary.md &&
   grep -Eq "^- 12.5 ms: (passes|does not pass)$" $tmp/steps/summary.md || fail "steps summary: $(cat $tmp/steps/summary.md)"

@@ -83,11 +83,13 @@ std::vector<std::string> NearestOptions(const CLI::App& app, const std::string& 
 }
 
 namespace {
-std::string& ProgramName() {
+std::string& MutableProgramName() {
   static std::string name = "ahhs";
   return name;
 }
 }  // namespace
+
+const std::string& ProgramName() { return MutableProgramName(); }
 
 const char* Version() { return AHHS_VERSION; }
 
@@ -103,7 +105,7 @@ int Parse(cli::App& facade, int argc, char** argv) {
   CLI::App& app = facade.native();
   if (argc > 0) {
     const std::string path = argv[0];
-    ProgramName() = path.substr(path.rfind('/') + 1);
+    MutableProgramName() = path.substr(path.rfind('/') + 1);
   }
   if (app.get_option_no_throw("--version") == nullptr) SetVersion(facade, {});
   try {

@@ -149,6 +149,10 @@ class App {
 // program gets a --version (SetVersion's, or one that prints the version alone).
 int Parse(cli::App& app, int argc, char** argv);
 
+// The program's name as Parse found it (argv[0] without its directory; "ahhs" before Parse), for
+// messages printed while parsing, e.g. that an option is deprecated.
+const std::string& ProgramName();
+
 // This build's version, the project's (CMakeLists.txt), e.g. "0.1.0".
 const char* Version();
 

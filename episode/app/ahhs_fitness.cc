@@ -20,7 +20,7 @@ void OnSignal(int) { g_stop = true; }
 }  // namespace
 
 int main(int argc, char** argv) {
-  cli::App app{"ahhs-fitness: task fitness from the organism's state (SIM/STATE)"};
+  cli::App app{"ahhs-fitness: the scenario's fitness from the organism's state (SIM/STATE)"};
   std::string url = ahhs::bus::kDefaultLcmUrl, arena = ahhs::bus::kDefaultArena;
   int episodes = 0;
   double timeout = 0;

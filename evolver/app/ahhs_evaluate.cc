@@ -109,10 +109,10 @@ int main(int argc, char** argv) {
     if (!out_dir.empty() && !resume_dir.empty())
       throw std::invalid_argument("give --out or --resume, not both");
     if (!resume_dir.empty())
-      for (const char* name :
-           {"--scenario", "--joints", "--modules", "--duration", "--variant", "--hormones",
-            "--rules", "--trials", "--aggregate", "--seed", "--population", "--generations",
-            "--optimizer", "--overwrite", "--pendulum.actuator-gain", "--pendulum.walls"})
+      for (const char* name : {"--scenario", "--docking", "--joints", "--modules", "--duration",
+                               "--variant", "--hormones", "--rules", "--trials", "--aggregate",
+                               "--seed", "--population", "--generations", "--optimizer",
+                               "--overwrite", "--pendulum.actuator-gain", "--pendulum.walls"})
         if (app.count(name))
           throw std::invalid_argument(std::string(name) +
                                       " cannot be given with --resume: the run keeps its own");

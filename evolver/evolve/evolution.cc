@@ -67,7 +67,7 @@ std::string CheckEvolveConfig(const EvolveConfig& c) {
 
 json ConfigToJson(const EvolveConfig& c) {
   json doc{{"scenario", sim::ScenarioName(c.scenario.kind)},
-           {"joints", sim::JointsName(c.scenario.joints)},
+           {"joints", sim::DockingName(c.scenario.docking)},
            {"modules", c.scenario.num_modules},
            {"duration", c.scenario.duration},
            {"variant", modules::VariantName(c.variant)},
@@ -93,7 +93,7 @@ EvolveConfig ConfigFromJson(const json& doc) {
   EvolveConfig c;
   try {
     c.scenario.kind = sim::ParseScenarioKind(doc.at("scenario").get<std::string>());
-    c.scenario.joints = sim::ParseJoints(doc.at("joints").get<std::string>());
+    c.scenario.docking = sim::ParseDocking(doc.at("joints").get<std::string>());
     c.scenario.num_modules = doc.at("modules").get<int>();
     c.scenario.duration = doc.at("duration").get<double>();
     const std::string variant = doc.at("variant").get<std::string>();

@@ -102,6 +102,7 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
   std::unique_ptr<RunStore> store;
   if (!o.resume_dir.empty()) {
     for (const char* name : {"--scenario",
+                             "--docking",
                              "--joints",
                              "--modules",
                              "--duration",
@@ -139,7 +140,8 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
       throw std::invalid_argument(o.resume_dir + " is a run of " + config->optimizer +
                                   " recorded by ahhs-evaluate, not of the GA: resume it with "
                                   "that optimizer");
-    const std::string physics = sim::PhysicsVersion(config->scenario.kind, config->scenario.joints);
+    const std::string physics =
+        sim::PhysicsVersion(config->scenario.kind, config->scenario.docking);
     if (!store->physics().empty() && store->physics() != physics)
       throw std::invalid_argument(o.resume_dir + " was made with the " +
                                   sim::ScenarioName(config->scenario.kind) + " physics of " +
@@ -202,7 +204,7 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
     const std::string run_id = base::HostName() + "-" + std::to_string(getpid()) + "-" +
                                std::to_string(std::time(nullptr));
     store = RunStore::Create(o.out_dir, run_id, config->seed, ConfigToJson(*config),
-                             sim::PhysicsVersion(config->scenario.kind, config->scenario.joints),
+                             sim::PhysicsVersion(config->scenario.kind, config->scenario.docking),
                              o.overwrite);
   }
   return store;

@@ -25,7 +25,7 @@ std::string DescribeRun(const EvolveConfig& config, int first) {
                   ? ", best chosen on " + std::to_string(config.validation) + " validation episodes"
                   : std::string());
   const std::string body = config.scenario.kind == sim::ScenarioKind::kGait
-                               ? std::string(sim::JointsName(config.scenario.joints)) +
+                               ? std::string(sim::DockingName(config.scenario.docking)) +
                                      " docking, " + std::to_string(config.scenario.num_modules) +
                                      " modules"
                                : std::string("cart and pole");
@@ -42,8 +42,8 @@ void PrintRunSummary(const RunStore& store, const EvolveConfig& config) {
   std::string replay = base::ExecutableDir() + "/ahhs-launch --scenario " +
                        std::string(sim::ScenarioName(config.scenario.kind));
   if (config.scenario.kind == sim::ScenarioKind::kGait)
-    replay += " --joints " + std::string(sim::JointsName(config.scenario.joints)) + " --modules " +
-              std::to_string(config.scenario.num_modules);
+    replay += " --docking " + std::string(sim::DockingName(config.scenario.docking)) +
+              " --modules " + std::to_string(config.scenario.num_modules);
   if (config.scenario.duration > 0) {
     replay += " --duration " + base::ExactDouble(config.scenario.duration);
   }

@@ -47,7 +47,7 @@ json EvalService::Hello() const {
   json hello = {{"v", kServiceProtocolVersion},
                 {"service", "ahhs-evaluate"},
                 {"scenario", sim::ScenarioName(settings_.task.kind)},
-                {"joints", sim::JointsName(settings_.task.joints)},
+                {"joints", sim::DockingName(settings_.task.docking)},
                 {"modules", settings_.task.num_modules},
                 {"duration", settings_.task.duration},
                 {"shape",

@@ -13,14 +13,14 @@ std::unique_ptr<RunStore> OpenServiceRun(const std::string& dir, bool resume, bo
     const std::string error = CheckEvolveConfig(*config);
     if (!error.empty()) throw std::invalid_argument(error);
     return RunStore::Create(dir, run_id, config->seed, ConfigToJson(*config),
-                            sim::PhysicsVersion(config->scenario.kind, config->scenario.joints),
+                            sim::PhysicsVersion(config->scenario.kind, config->scenario.docking),
                             overwrite);
   }
   auto store = RunStore::Open(dir, StoreAccess::kWrite);
   *config = ConfigFromJson(store->config());
   if (config->optimizer.empty())
     throw std::invalid_argument(dir + " is a run of the GA: resume it with ahhs-evolve --resume");
-  const std::string physics = sim::PhysicsVersion(config->scenario.kind, config->scenario.joints);
+  const std::string physics = sim::PhysicsVersion(config->scenario.kind, config->scenario.docking);
   if (store->physics() != physics)
     throw std::invalid_argument(
         dir + " was made with the " + std::string(sim::ScenarioName(config->scenario.kind)) +

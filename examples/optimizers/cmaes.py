@@ -8,7 +8,7 @@
 The run directory is a run like ahhs-evolve's (ahhs-report, ahhs-replay, ahhs-view --run read
 it) with the optimizer checkpointed beside it: run the same command again after a kill (or
 Ctrl-C) and the search resumes and ends as if it had never stopped. The options after `--` are
-ahhs-evaluate's task options (scenario, shape, trials, envelope, seed).
+ahhs-evaluate's scenario and evaluation options (scenario, shape, trials, envelope, seed).
 
 CMA-ES searches the genome vector's unit cube: y in [0, 1]^n maps to lower + (upper - lower) * y
 (values outside are clipped), so that one step size fits values of every range. It starts at
@@ -69,7 +69,7 @@ def main():
     p.add_argument("--seed", type=int, default=1, help="the optimizer's seed")
     p.add_argument("--bin", help="directory of ahhs-evaluate (default: $AHHS_BIN or PATH)")
     p.add_argument("--farm", default="", help="ahhs-evaluate's farm options, e.g. '--workers 2'")
-    p.epilog = "After --: ahhs-evaluate's task options (scenario, shape, trials, envelope, seed)."
+    p.epilog = "After --: ahhs-evaluate's scenario and evaluation options (scenario, shape, trials, envelope, seed)."
     argv, task = sys.argv[1:], []
     if "--" in argv:
         argv, task = argv[:argv.index("--")], argv[argv.index("--") + 1:]

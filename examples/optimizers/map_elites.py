@@ -76,7 +76,7 @@ def main():
     p.add_argument("--seed", type=int, default=1, help="the optimizer's seed")
     p.add_argument("--bin", help="directory of ahhs-evaluate (default: $AHHS_BIN or PATH)")
     p.add_argument("--farm", default="", help="ahhs-evaluate's farm options, e.g. '--workers 2'")
-    p.epilog = "After --: ahhs-evaluate's task options (scenario, shape, trials, envelope, seed)."
+    p.epilog = "After --: ahhs-evaluate's scenario and evaluation options (scenario, shape, trials, envelope, seed)."
     argv, task = sys.argv[1:], []
     if "--" in argv:
         argv, task = argv[:argv.index("--")], argv[argv.index("--") + 1:]

@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
   as::ScenarioOptions task;
   std::uint64_t seed = 1;
   bool verbose = false;
-  task.Add(app, "", "episode length, simulated seconds (default: the task's)");
+  task.Add(app, "", "episode length, simulated seconds (default: the scenario's)");
   auto* drive_opt = app.add_option(
       "--drive", drive,
       "standalone: built-in commands: zero, wave, swingup (pendulum) or inchworm (gait)");

@@ -111,7 +111,7 @@ int RunStandalone(const StandaloneOptions& o) {
   auto sim = as::MakeScenario(config);
   if (!as::DriveFits(drive_kind, *sim))
     throw std::invalid_argument("--drive " + o.drive + " is not defined for the " +
-                                as::ScenarioName(config.kind) + " task");
+                                as::ScenarioName(config.kind) + " scenario");
   sim->Reset(o.seed);
   std::vector<double> command(static_cast<std::size_t>(sim->num_actuators()));
   std::vector<double> commands;  // every compartment's, for the behaviour summary

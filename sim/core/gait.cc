@@ -83,8 +83,8 @@ GaitScenario::GaitScenario(const ScenarioConfig& config, GaitConstants constants
     : k_(constants),
       envelope_(config.envelope),
       num_modules_(config.num_modules),
-      joints_(config.joints),
-      step_(joints_ == Joints::kDamped ? k_.physics_step_damped : k_.physics_step_fixed) {
+      docking_(config.docking),
+      step_(docking_ == DockingKind::kDamped ? k_.physics_step_damped : k_.physics_step_fixed) {
   InitOdeOnce();
   total_ticks_ = EpisodeTicks(config.duration, k_.control_period,
                               EpisodeTicks(k_.duration, k_.control_period, 0));
@@ -126,8 +126,8 @@ void GaitScenario::Build() {
   world_ = dWorldCreate();
   dWorldSetGravity(world_, 0, 0, -k_.gravity);
   dWorldSetQuickStepNumIterations(world_, k_.solver_iterations);
-  dWorldSetQuickStepW(
-      world_, joints_ == Joints::kFixed ? k_.solver_relaxation_fixed : k_.solver_relaxation_damped);
+  dWorldSetQuickStepW(world_, docking_ == DockingKind::kFixed ? k_.solver_relaxation_fixed
+                                                              : k_.solver_relaxation_damped);
   const int rest_steps = static_cast<int>(std::lround(k_.rest_time / step_));
   if (rest_steps > 0 && k_.solver != GaitSolver::kChain) {
     dWorldSetAutoDisableFlag(world_, 1);
@@ -208,7 +208,7 @@ void GaitScenario::Build() {
     return body;
   };
   auto mass_of = [&](int i) { return half_mass * draw_.mass_scale[static_cast<std::size_t>(i)]; };
-  const bool rigid = joints_ == Joints::kFixed;
+  const bool rigid = docking_ == DockingKind::kFixed;
   for (int i = 0; i < num_modules_; ++i) {
     Module& m = modules_[static_cast<std::size_t>(i)];
     const double front_x = centre_of(i) + s / 4, back_x = centre_of(i) - s / 4;

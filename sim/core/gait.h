@@ -88,7 +88,7 @@ class GaitScenario final : public Scenario {
   EnvelopeDraw draw_;          // this episode's draws (all 1 and 0 for no envelope)
   std::mt19937_64 noise_rng_;  // this episode's sensor noise
   int num_modules_;
-  Joints joints_;
+  DockingKind docking_;
   double step_;  // s per physics step (by docking)
   std::int64_t total_ticks_;
   dWorldID world_ = nullptr;

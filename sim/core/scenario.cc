@@ -15,10 +15,10 @@ ScenarioKind ParseScenarioKind(const std::string& name) {
   throw std::invalid_argument("unknown scenario '" + name + "' (use gait or pendulum)");
 }
 
-Joints ParseJoints(const std::string& name) {
-  if (name == "damped") return Joints::kDamped;
-  if (name == "fixed") return Joints::kFixed;
-  throw std::invalid_argument("unknown joints '" + name + "' (use damped or fixed)");
+DockingKind ParseDocking(const std::string& name) {
+  if (name == "damped") return DockingKind::kDamped;
+  if (name == "fixed") return DockingKind::kFixed;
+  throw std::invalid_argument("unknown docking '" + name + "' (use damped or fixed)");
 }
 
 const char* PendulumWallsName(PendulumWalls walls) {
@@ -33,18 +33,20 @@ PendulumWalls ParsePendulumWalls(const std::string& name) {
 const char* ScenarioName(ScenarioKind kind) {
   return kind == ScenarioKind::kGait ? "gait" : "pendulum";
 }
-const char* JointsName(Joints joints) { return joints == Joints::kDamped ? "damped" : "fixed"; }
-
-const char* PhysicsVersion(ScenarioKind kind, Joints joints) {
-  if (kind == ScenarioKind::kPendulum) return kPendulumPhysicsVersion;
-  return joints == Joints::kDamped ? kGaitDampedPhysicsVersion : kGaitFixedPhysicsVersion;
+const char* DockingName(DockingKind docking) {
+  return docking == DockingKind::kDamped ? "damped" : "fixed";
 }
 
-std::vector<std::string> ReplayablePhysics(ScenarioKind kind, Joints joints) {
-  std::vector<std::string> versions{PhysicsVersion(kind, joints)};
+const char* PhysicsVersion(ScenarioKind kind, DockingKind docking) {
+  if (kind == ScenarioKind::kPendulum) return kPendulumPhysicsVersion;
+  return docking == DockingKind::kDamped ? kGaitDampedPhysicsVersion : kGaitFixedPhysicsVersion;
+}
+
+std::vector<std::string> ReplayablePhysics(ScenarioKind kind, DockingKind docking) {
+  std::vector<std::string> versions{PhysicsVersion(kind, docking)};
   if (kind == ScenarioKind::kGait)
-    versions.emplace_back(joints == Joints::kDamped ? kGaitDampedDantzigPhysicsVersion
-                                                    : kGaitFixedDantzigPhysicsVersion);
+    versions.emplace_back(docking == DockingKind::kDamped ? kGaitDampedDantzigPhysicsVersion
+                                                          : kGaitFixedDantzigPhysicsVersion);
   return versions;
 }
 
@@ -57,11 +59,11 @@ std::string CheckConfig(const ScenarioConfig& c) {
     return "duration: must be a positive number of seconds";
   if (c.duration > 1e5) return "duration: more than 100000 s";
   if (!std::isfinite(c.physics_step) || c.physics_step < 0 || c.physics_step > 0.05)
-    return "physics step: 0 (the task's) or up to 0.05 s";
+    return "physics step: 0 (the scenario's) or up to 0.05 s";
   if (!std::isfinite(c.friction_scale) || c.friction_scale <= 0 || c.friction_scale > 10)
     return "friction scale: above 0, at most 10";
   if (!c.physics.empty()) {
-    const auto versions = ReplayablePhysics(c.kind, c.joints);
+    const auto versions = ReplayablePhysics(c.kind, c.docking);
     if (std::find(versions.begin(), versions.end(), c.physics) == versions.end()) {
       std::string list;
       for (const auto& v : versions) list += (list.empty() ? "" : ", ") + v;
@@ -100,10 +102,11 @@ ScenarioShape ShapeOf(const ScenarioConfig& config) {
   return shape;
 }
 
-ScenarioConfig MakeScenarioConfig(ScenarioKind kind, Joints joints, int modules, double duration) {
+ScenarioConfig MakeScenarioConfig(ScenarioKind kind, DockingKind docking, int modules,
+                                  double duration) {
   ScenarioConfig config;
   config.kind = kind;
-  config.joints = joints;
+  config.docking = docking;
   config.num_modules = kind == ScenarioKind::kPendulum ? 2 : modules;
   config.duration = duration;
   return config;
@@ -122,8 +125,8 @@ std::unique_ptr<Scenario> MakeScenario(const ScenarioConfig& config) {
   if (config.physics_step > 0) k.physics_step_fixed = k.physics_step_damped = config.physics_step;
   k.friction *= config.friction_scale;
   // The earlier physics: the same model solved by dWorldStep.
-  if (config.physics == (config.joints == Joints::kDamped ? kGaitDampedDantzigPhysicsVersion
-                                                          : kGaitFixedDantzigPhysicsVersion))
+  if (config.physics == (config.docking == DockingKind::kDamped ? kGaitDampedDantzigPhysicsVersion
+                                                                : kGaitFixedDantzigPhysicsVersion))
     k.solver = GaitSolver::kDantzig;
   return std::make_unique<GaitScenario>(config, k);
 }

@@ -16,7 +16,7 @@
 namespace ahhs::sim {
 
 enum class ScenarioKind { kGait, kPendulum };
-enum class Joints { kDamped, kFixed };
+enum class DockingKind { kDamped, kFixed };
 
 // Two choices the paper leaves open for the pendulum, as task settings (docs/scenarios.md,
 // "Choices the paper leaves open"), on the wire in RESET and EVAL/REQUEST. The defaults are the
@@ -40,9 +40,9 @@ PendulumWalls ParsePendulumWalls(const std::string& name);  // throws std::inval
 
 struct ScenarioConfig {
   ScenarioKind kind = ScenarioKind::kGait;
-  int num_modules = 5;              // gait: modules in the chain (>= 2); pendulum: always 2
-  Joints joints = Joints::kDamped;  // gait docking variant
-  double duration = 0;              // simulated seconds; 0 = the task's default (60 s / 3000 ticks)
+  int num_modules = 5;  // gait: modules in the chain (>= 2); pendulum: always 2
+  DockingKind docking = DockingKind::kDamped;  // the gait's docking
+  double duration = 0;  // simulated seconds; 0 = the task's default (60 s / 3000 ticks)
   // A check, not a task setting: the physics step (gait, ODE) or RK4 step (pendulum) in seconds;
   // 0 = the task's (docs/scenarios.md). Never on the wire: only a direct replay sets it, to see
   // whether a behaviour depends on the discretisation.
@@ -64,14 +64,14 @@ struct ScenarioConfig {
 
 // Parses "gait"/"pendulum" and "damped"/"fixed"; throw std::invalid_argument otherwise.
 ScenarioKind ParseScenarioKind(const std::string& name);
-Joints ParseJoints(const std::string& name);
+DockingKind ParseDocking(const std::string& name);
 const char* ScenarioName(ScenarioKind kind);
-const char* JointsName(Joints joints);
+const char* DockingName(DockingKind docking);
 
 // The physics version (sim/core/constants.h) a fitness of this configuration is measured with.
-const char* PhysicsVersion(ScenarioKind kind, Joints joints);
+const char* PhysicsVersion(ScenarioKind kind, DockingKind docking);
 // The physics versions this build can simulate for a task: its own first, then earlier ones.
-std::vector<std::string> ReplayablePhysics(ScenarioKind kind, Joints joints);
+std::vector<std::string> ReplayablePhysics(ScenarioKind kind, DockingKind docking);
 
 // Checks a config; returns "" or a message naming the bad field.
 std::string CheckConfig(const ScenarioConfig& config);
@@ -94,7 +94,8 @@ std::vector<std::pair<int, int>> ChainDocking(int compartments);
 std::int64_t EpisodeTicks(double duration, double control_period, std::int64_t default_ticks);
 
 // A configuration from tool options: the pendulum ignores `modules` (it always has 2).
-ScenarioConfig MakeScenarioConfig(ScenarioKind kind, Joints joints, int modules, double duration);
+ScenarioConfig MakeScenarioConfig(ScenarioKind kind, DockingKind docking, int modules,
+                                  double duration);
 
 // Pose and size of one rigid body, world frame (x along the initial chain, z up), metres.
 struct BodyState {

@@ -1,9 +1,11 @@
-// The task as command-line options, declared once for every tool that names one: --scenario,
-// --joints, --modules, --duration and the pendulum's open choices (sim/core/scenario.h). A bad name
-// is a usage error with the same message as the task's own parser ("unknown scenario 'walker' (use
-// gait or pendulum)").
+// The scenario as command-line options, declared once for every tool that names one: --scenario,
+// --docking, --modules, --duration and the pendulum's open choices (sim/core/scenario.h). A bad
+// name is a usage error with the same message as the scenario's own parser ("unknown scenario
+// 'walker' (use gait or pendulum)"). --joints, the old name of --docking, works for one release
+// and says it is deprecated (also as a config file's key).
 #pragma once
 
+#include <iostream>
 #include <stdexcept>
 #include <string>
 
@@ -14,7 +16,7 @@ namespace ahhs::sim {
 
 struct ScenarioOptions {
   std::string scenario = "gait";
-  std::string joints = "damped";
+  std::string docking = "damped";
   int modules = 5;
   double duration = 0;  // s; 0: the task's
   double pendulum_gain = 1;
@@ -26,9 +28,17 @@ struct ScenarioOptions {
     app.add_option("--scenario", scenario, context + "gait or pendulum")
         ->check(NameCheck("SCENARIO", [](const std::string& s) { ParseScenarioKind(s); }))
         ->capture_default_str();
-    app.add_option("--joints", joints, context + "gait docking: damped or fixed")
-        ->check(NameCheck("JOINTS", [](const std::string& s) { ParseJoints(s); }))
-        ->capture_default_str();
+    auto* docking_opt =
+        app.add_option("--docking", docking, context + "gait docking: damped or fixed")
+            ->check(NameCheck("DOCKING", [](const std::string& s) { ParseDocking(s); }))
+            ->capture_default_str();
+    app.add_option("--joints", docking, "deprecated: use --docking")
+        ->check(NameCheck("DOCKING", [](const std::string& s) { ParseDocking(s); }))
+        ->excludes(docking_opt)
+        ->each([](const std::string&) {
+          std::cerr << base::ProgramName()
+                    << ": --joints is deprecated and will go; use --docking\n";
+        });
     app.add_option("--modules", modules, context + "gait: modules in the chain (>= 2)")
         ->capture_default_str();
     duration_opt_ = app.add_option("--duration", duration, context + duration_help);
@@ -46,7 +56,7 @@ struct ScenarioOptions {
   // The configuration the options name (the task's own checks still apply: CheckConfig).
   ScenarioConfig Config() const {
     ScenarioConfig c =
-        MakeScenarioConfig(ParseScenarioKind(scenario), ParseJoints(joints), modules, duration);
+        MakeScenarioConfig(ParseScenarioKind(scenario), ParseDocking(docking), modules, duration);
     c.pendulum.actuator_gain = pendulum_gain;
     c.pendulum.walls = ParsePendulumWalls(pendulum_walls);
     return c;

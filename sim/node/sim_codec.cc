@@ -111,12 +111,13 @@ topology_t TopologyMessage(int compartments, const std::vector<std::pair<int, in
   return m;
 }
 
-std::int8_t JointsToWire(Joints joints) {
-  return joints == Joints::kFixed ? sim_control_t::JOINTS_FIXED : sim_control_t::JOINTS_DAMPED;
+std::int8_t DockingToWire(DockingKind docking) {
+  return docking == DockingKind::kFixed ? sim_control_t::JOINTS_FIXED
+                                        : sim_control_t::JOINTS_DAMPED;
 }
 
 std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_modules,
-                               std::int8_t joints, double duration, const Envelope& envelope,
+                               std::int8_t docking, double duration, const Envelope& envelope,
                                double pendulum_actuator_gain, std::int8_t pendulum_walls,
                                ScenarioConfig* config) {
   ScenarioConfig c;
@@ -127,14 +128,14 @@ std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_mod
   } else {
     return "unknown scenario '" + scenario + "'";
   }
-  if (joints == sim_control_t::JOINTS_DAMPED) {
-    c.joints = Joints::kDamped;
-  } else if (joints == sim_control_t::JOINTS_FIXED) {
-    c.joints = Joints::kFixed;
+  if (docking == sim_control_t::JOINTS_DAMPED) {
+    c.docking = DockingKind::kDamped;
+  } else if (docking == sim_control_t::JOINTS_FIXED) {
+    c.docking = DockingKind::kFixed;
   } else {
-    return "unknown joints value " + std::to_string(joints);
+    return "unknown docking value " + std::to_string(docking);
   }
-  c = MakeScenarioConfig(c.kind, c.joints, num_modules, duration);
+  c = MakeScenarioConfig(c.kind, c.docking, num_modules, duration);
   c.envelope = envelope;
   if (pendulum_walls != 0 && pendulum_walls != 1)
     return "unknown pendulum walls value " + std::to_string(pendulum_walls);

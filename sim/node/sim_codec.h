@@ -41,20 +41,20 @@ void KeepStaticBodies(std::vector<BodyState>* bodies);
 inline constexpr std::int64_t kSceneEveryTicks = 20;
 inline bool SceneDue(std::int64_t tick) { return tick % kSceneEveryTicks == 0; }
 
-// The one wire form of a ScenarioConfig: the fields (scenario, num_modules, joints, duration,
+// The one wire form of a ScenarioConfig: the fields (scenario, num_modules, docking, duration,
 // the envelope's half-widths, the pendulum's choices) that sim_control_t (RESET) and
 // eval_request_t both carry.
-std::int8_t JointsToWire(Joints joints);
+std::int8_t DockingToWire(DockingKind docking);
 // Checks the fields and makes the config; returns "" or why they are refused.
 std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_modules,
-                               std::int8_t joints, double duration, const Envelope& envelope,
+                               std::int8_t docking, double duration, const Envelope& envelope,
                                double pendulum_actuator_gain, std::int8_t pendulum_walls,
                                ScenarioConfig* config);
 template <class Message>
 void ScenarioToWire(const ScenarioConfig& config, Message* m) {
   m->scenario = ScenarioName(config.kind);
   m->num_modules = ShapeOf(config).compartments;
-  m->joints = JointsToWire(config.joints);
+  m->joints = DockingToWire(config.docking);
   m->duration = config.duration;
   const Envelope& e = config.envelope;
   m->envelope_friction = e.friction;

@@ -125,7 +125,7 @@ void SimNode::Reset(const sim_control_t& m) {
   }
   // Reuse the world when the config is unchanged (building an ODE world is the slow part).
   if (!scenario_ || config.kind != config_.kind || config.num_modules != config_.num_modules ||
-      config.joints != config_.joints || config.duration != config_.duration) {
+      config.docking != config_.docking || config.duration != config_.duration) {
     scenario_ = MakeScenario(config);
     config_ = config;
   }

@@ -63,10 +63,10 @@ TEST_CASE("gait descriptor: the centroid's displacement from the first state to 
 
 TEST_CASE("the direct and fused arenas give the same descriptor to the bit, any task settings") {
   for (const auto kind : {sim::ScenarioKind::kPendulum, sim::ScenarioKind::kGait}) {
-    for (const auto joints : {sim::Joints::kFixed, sim::Joints::kDamped}) {
+    for (const auto docking : {sim::DockingKind::kFixed, sim::DockingKind::kDamped}) {
       // (The pendulum twice: with the task's choices (kDamped, which it ignores) and others.)
-      sim::ScenarioConfig config = sim::MakeScenarioConfig(kind, joints, 5, 3);
-      if (kind == sim::ScenarioKind::kPendulum && joints == sim::Joints::kFixed) {
+      sim::ScenarioConfig config = sim::MakeScenarioConfig(kind, docking, 5, 3);
+      if (kind == sim::ScenarioKind::kPendulum && docking == sim::DockingKind::kFixed) {
         // The pendulum's choices travel in RESET too (the fused arena's sim learns it there).
         config.pendulum.actuator_gain = 10;
         config.pendulum.walls = sim::PendulumWalls::kSoft;

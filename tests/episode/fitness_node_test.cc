@@ -24,7 +24,8 @@ TEST_CASE("an episode whose monitor received no valid state ends in an error, no
   reset.command = sim_control_t::RESET;
   reset.episode = 7;
   sim::ScenarioToWire(
-      sim::MakeScenarioConfig(sim::ScenarioKind::kPendulum, sim::Joints::kDamped, 2, 1.0), &reset);
+      sim::MakeScenarioConfig(sim::ScenarioKind::kPendulum, sim::DockingKind::kDamped, 2, 1.0),
+      &reset);
   bus::PublishTyped(bus, ch.SimControl(), reset);
   node.Poll(std::chrono::milliseconds(10));
   // States of another episode (a tracker that does not copy the episode) are not valid.
@@ -58,8 +59,9 @@ struct GaitEpisode {
     sim_control_t reset{};
     reset.command = sim_control_t::RESET;
     reset.episode = episode;
-    const auto config = sim::MakeScenarioConfig(sim::ScenarioKind::kGait, sim::Joints::kFixed, 3,
-                                                0.5);  // 10 ticks
+    const auto config =
+        sim::MakeScenarioConfig(sim::ScenarioKind::kGait, sim::DockingKind::kFixed, 3,
+                                0.5);  // 10 ticks
     period = sim::ShapeOf(config).control_period;
     sim::ScenarioToWire(config, &reset);
     bus::PublishTyped(bus, ch.SimControl(), reset);

@@ -27,7 +27,7 @@ $G random --variant ahhs2 --hormones 5 --rules 30 --sensors 4 --actuators 1 --se
 $G random --variant ahhs1 --hormones 5 --rules 80 --sensors 4 --actuators 1 --seed 4 >$tmp/g1.json
 
 echo "== 1. fused == processes"
-for c in "pendulum p2 1 30" "pendulum p1 2 30" "gait g2 3 10" "gait g1 4 10" "gait g2 5 10 --joints fixed" \
+for c in "pendulum p2 1 30" "pendulum p1 2 30" "gait g2 3 10" "gait g1 4 10" "gait g2 5 10 --docking fixed" \
   "pendulum p2 6 30 --pendulum.actuator-gain 10" "pendulum p1 7 30 --pendulum.walls soft"; do
   set -- $c
   "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --arena-kind fused >$tmp/f.out || fail "fused $c"

@@ -27,7 +27,7 @@ TEST_CASE("an envelope travels in RESET: the fused arena equals the direct one, 
           "[post-eval][envelope]") {
   for (auto kind : {sim::ScenarioKind::kPendulum, sim::ScenarioKind::kGait}) {
     episode::EpisodeSpec spec;
-    spec.config = sim::MakeScenarioConfig(kind, sim::Joints::kDamped, 3, 5);
+    spec.config = sim::MakeScenarioConfig(kind, sim::DockingKind::kDamped, 3, 5);
     spec.config.envelope = sim::EnvelopePreset("wide");
     spec.seed = 21;
     modules::Rng rng(3);

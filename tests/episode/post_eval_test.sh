@@ -8,7 +8,7 @@ source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_scratch  # every command runs in the foreground: nothing to kill
 cd "$tmp"
 knife=$AHHS_SOURCE_DIR/tests/episode/data/knife-edge-damped-ahhs1-120.json
-replay=("$bin/ahhs-replay" --genome "$knife" --scenario gait --joints damped)
+replay=("$bin/ahhs-replay" --genome "$knife" --scenario gait --docking damped)
 "${replay[@]}" --post-eval 3 >a.out 2>&1 || fail "post-evaluation: $(cat a.out)"
 grep -q "stored fitness 2.7359187058763337: reproduced exactly" a.out || fail "own episode: $(cat a.out)"
 line=$(grep "^post-evaluation on 3 held-out episodes (envelope paper): median" a.out) ||

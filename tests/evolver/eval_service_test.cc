@@ -39,7 +39,7 @@ class SeedFitness : public evolver::FitnessEvaluator {
 
 evolver::ServiceSettings Settings() {
   evolver::ServiceSettings s;
-  s.task = sim::MakeScenarioConfig(sim::ScenarioKind::kGait, sim::Joints::kFixed, 5, 4);
+  s.task = sim::MakeScenarioConfig(sim::ScenarioKind::kGait, sim::DockingKind::kFixed, 5, 4);
   s.shape = {modules::Variant::kAhhs2, 2, 3, 4, 1};
   s.trials = 3;
   s.aggregate = evolver::Aggregate::kMedian;

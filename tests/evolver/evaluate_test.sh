@@ -9,7 +9,7 @@ ahhs_netns "$0" "$@"
 ahhs_scratch 'ahhs-evaluate|ahhs-worker'
 url="udpm://239.255.42.61:7752?ttl=0&recv_buf_size=4194304"
 S="$bin/ahhs-evaluate"
-task="--scenario gait --joints fixed --duration 4"
+task="--scenario gait --docking fixed --duration 4"
 "$bin/ahhs-genome" random --variant ahhs2 --hormones 5 --rules 30 --sensors 4 --actuators 1 --seed 3 >$tmp/g.json
 python3 - $tmp/g.json >$tmp/requests <<'PY'
 import json, sys

@@ -61,8 +61,8 @@ for a in fused processes; do
   $E $gait --out $tmp/g-$a --workers 1 --arena-kind $a >$tmp/out 2>&1 || { cat $tmp/out; fail "gait $a"; }
   same_run $tmp/g-direct $tmp/g-$a "gait, $a arena"
 done
-$E $gait --joints fixed --variant ahhs1 --out $tmp/gf-direct --workers 2 >/dev/null 2>&1 || fail "gait fixed"
-$E $gait --joints fixed --variant ahhs1 --out $tmp/gf-fused --workers 1 --arena-kind fused >/dev/null 2>&1 || fail "gait fixed fused"
+$E $gait --docking fixed --variant ahhs1 --out $tmp/gf-direct --workers 2 >/dev/null 2>&1 || fail "gait fixed"
+$E $gait --docking fixed --variant ahhs1 --out $tmp/gf-fused --workers 1 --arena-kind fused >/dev/null 2>&1 || fail "gait fixed fused"
 same_run $tmp/gf-direct $tmp/gf-fused "gait fixed ahhs1, fused arena"
 
 echo "== 2. kill -9 and resume; Ctrl-C"

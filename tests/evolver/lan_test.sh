@@ -48,7 +48,7 @@ echo "identical; $(grep -c 're-issued' $tmp/lossy.out) re-issues reported"
 
 echo "== large genomes (AHHS1-300, about 17 kB): towards host 1, 30 % of IP fragments and of datagrams over 1000 bytes lost"
 in_host ${hosts[1]} nft flush ruleset
-big="--scenario gait --joints damped --variant ahhs1 --hormones 5 --rules 300 --population 20 --generations 2 --duration 3 --seed 22 --lcm-url $url"
+big="--scenario gait --docking damped --variant ahhs1 --hormones 5 --rules 300 --population 20 --generations 2 --duration 3 --seed 22 --lcm-url $url"
 start=$(date +%s.%N)
 in_host ${hosts[0]} timeout 300 "$bin/ahhs-evolve" $big --out $tmp/big-clean --workers 0 --worker-wait 20 >$tmp/big-clean.out 2>&1 ||
   { cat $tmp/big-clean.out; fail "loss-free large-genome run"; }

@@ -16,7 +16,7 @@ check() {  # check PRESET FIELD=VALUE...
   done
   echo "$preset: ok"
 }
-trap 'rm -f /tmp/preset.$$.json' EXIT
+trap 'rm -f /tmp/preset.$$.json /tmp/preset.$$.err' EXIT
 n=0
 for v in "ahhs1 60" "ahhs2 15"; do
   set -- $v
@@ -50,6 +50,12 @@ done
 # Single envelope keys are quoted TOML keys ("envelope.friction" = 0.1), on top of the preset.
 printf 'envelope = "paper"\n"envelope.friction" = 0.1\ntrials = 2\n' >/tmp/preset.$$.json
 "$E" --config /tmp/preset.$$.json --show-config | grep -q '"friction": 0.1' || fail "envelope key in a config"
+# A config file's key 'joints', the old name of 'docking', works for one release and says so.
+printf 'scenario = "gait"\njoints = "fixed"\n' >/tmp/preset.$$.json
+"$E" --config /tmp/preset.$$.json --show-config 2>/tmp/preset.$$.err | grep -q '"joints": "fixed"' ||
+  fail "joints in a config file: $(cat /tmp/preset.$$.err)"
+grep -qx "ahhs-evolve: --joints is deprecated and will go; use --docking" /tmp/preset.$$.err ||
+  fail "joints in a config file: $(cat /tmp/preset.$$.err)"
 [[ $(ls "$src"/configs/*.toml | wc -l) == $n ]] || fail "configs/ holds presets this test does not know"
 # Options given on the command line override the preset.
 "$E" --config "$src/configs/gait-damped-ahhs2-30.toml" --generations 7 --seed 5 --show-config | grep -q '"generations": 7' ||

@@ -41,7 +41,7 @@ same_fitness AHHS1 0 $tmp/a1.json --scenario gait --modules 3 --seed 5 --duratio
 genomes=$AHHS_SOURCE_DIR/tests/fixtures/genomes
 stored_seed() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['meta']['eval_seed'])" "$1"; }
 echo "== an evolved gait (the first study's gait-fixed-ahhs1-20 seed 2)"
-same_fitness EVOLVED 2 "$genomes/gait-fixed-ahhs1-20-seed2.json" --scenario gait --modules 5 --joints fixed \
+same_fitness EVOLVED 2 "$genomes/gait-fixed-ahhs1-20-seed2.json" --scenario gait --modules 5 --docking fixed \
   --seed "$(stored_seed "$genomes/gait-fixed-ahhs1-20-seed2.json")"
 
 echo "== an evolved pendulum (AHHS2-15 seed 1): compartments own some of the shared slots"

@@ -22,7 +22,7 @@ echo "== neighbourhood"
 # With the physics a genome was evolved with (the first study's damped docking, dWorldStep): its
 # original is its stored fitness to the last digit printed.
 knife=$AHHS_SOURCE_DIR/tests/episode/data/knife-edge-damped-ahhs1-120.json
-"$bin/ahhs-report" neighbourhood $knife --scenario gait --joints damped --seed 295761112068970292 \
+"$bin/ahhs-report" neighbourhood $knife --scenario gait --docking damped --seed 295761112068970292 \
   --physics 2026-12-01.2 --mutants 1 -o $tmp/nb3 >$tmp/nb3.out 2>&1 || { cat $tmp/nb3.out; fail "neighbourhood --physics"; }
 grep -q "^original,2.7359187058763337," $tmp/nb3/mutants.csv || fail "neighbourhood --physics: $(cat $tmp/nb3/mutants.csv)"
 
@@ -42,9 +42,12 @@ grep -q "^| genome | 3.125 ms: median (quartiles), over the wall | 6.25 ms: " $t
 grep -q "damped docking, physics 2026-12-04, at 3.125 ms" $tmp/steps3/summary.md &&
   grep -Eq "\((agrees|differs); [+-][0-9.]+ to [+-][0-9.]+\)" $tmp/steps3/summary.md ||
   fail "steps --physics: $(cat $tmp/steps3/summary.md)"
-"$bin/ahhs-report" steps $tmp/nothing.json -o $tmp/steps2 >$tmp/err 2>&1 && fail "steps of a missing genome"
+# (--joints, the old name of --docking, still works for one release and says so.)
+"$bin/ahhs-report" steps $tmp/nothing.json --joints fixed -o $tmp/steps2 >$tmp/err 2>&1 && fail "steps of a missing genome"
 grep -q "no such genome file or run directory" $tmp/err && ! grep -q Traceback $tmp/err ||
   fail "steps of a missing genome: $(cat $tmp/err)"
+grep -qx "ahhs-report steps: --joints is deprecated and will go; use --docking" $tmp/err ||
+  fail "steps --joints: $(cat $tmp/err)"
 
 echo "== the random pendulum genomes of docs/results.md (1 per setting)"
 "$AHHS_SOURCE_DIR/studies/paper-2010-random-genomes.py" "$bin" --count 1 >$tmp/random.md 2>&1 ||

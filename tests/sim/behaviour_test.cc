@@ -27,10 +27,10 @@ BehaviourSummary RunWith(Scenario& s, DriveKind drive) {
   }
   return b;
 }
-ScenarioConfig Config(ScenarioKind kind, Joints joints = Joints::kDamped) {
+ScenarioConfig Config(ScenarioKind kind, DockingKind docking = DockingKind::kDamped) {
   ScenarioConfig c;
   c.kind = kind;
-  c.joints = joints;
+  c.docking = docking;
   c.num_modules = kind == ScenarioKind::kPendulum ? 2 : 5;
   return c;
 }
@@ -54,8 +54,8 @@ TEST_CASE("behaviour: the swing-up turns the pendulum over the top, hanging does
 
 TEST_CASE("behaviour: a gait's commands and where it ends relative to the wall",
           "[sim][behaviour]") {
-  for (Joints j : {Joints::kDamped, Joints::kFixed}) {
-    INFO(JointsName(j));
+  for (DockingKind j : {DockingKind::kDamped, DockingKind::kFixed}) {
+    INFO(DockingName(j));
     GaitScenario g(Config(ScenarioKind::kGait, j));
     g.Reset(1);
     const BehaviourSummary still = RunWith(g, DriveKind::kZero);

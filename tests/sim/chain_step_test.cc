@@ -183,10 +183,10 @@ TEST_CASE("chain step: a 60-s wave walks as far as with dWorldStep when not chao
           "[sim][chain]") {
   // gait_test.cc runs every check of the gait with the chain solver (the default); this one
   // compares it with dWorldStep side by side on a whole episode.
-  for (Joints j : {Joints::kDamped, Joints::kFixed}) {
+  for (DockingKind j : {DockingKind::kDamped, DockingKind::kFixed}) {
     ScenarioConfig c;
     c.kind = ScenarioKind::kGait;
-    c.joints = j;
+    c.docking = j;
     GaitScenario chain(c);
     GaitConstants dantzig;
     dantzig.solver = GaitSolver::kDantzig;
@@ -202,10 +202,10 @@ TEST_CASE("chain step: a 60-s wave walks as far as with dWorldStep when not chao
         if (g->Step() != StepStatus::kRunning) break;
       }
     }
-    INFO(JointsName(j) << " wave: chain " << chain.Fitness() << ", dWorldStep " << ode.Fitness());
+    INFO(DockingName(j) << " wave: chain " << chain.Fitness() << ", dWorldStep " << ode.Fitness());
     CHECK(chain.Fitness() > 0.3);
     // The rigid chain's wave is not chaotic: the same distance. The damped one's is: rounding
     // alone moves it (1.0 to 1.6 by the order of the joints' rows), so only "it walks".
-    if (j == Joints::kFixed) CHECK(chain.Fitness() == Approx(ode.Fitness()).epsilon(0.01));
+    if (j == DockingKind::kFixed) CHECK(chain.Fitness() == Approx(ode.Fitness()).epsilon(0.01));
   }
 }

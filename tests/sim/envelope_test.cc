@@ -17,10 +17,10 @@ using ahhs::sim_control_t;
 namespace {
 
 // A drive's episode, as ahhs-sim --drive runs it; returns the fitness.
-double DriveEpisode(ScenarioKind kind, Joints joints, DriveKind drive, std::uint64_t seed,
+double DriveEpisode(ScenarioKind kind, DockingKind docking, DriveKind drive, std::uint64_t seed,
                     double duration, const Envelope& envelope = {},
                     std::vector<double>* first_sensors = nullptr, const std::string& physics = "") {
-  ScenarioConfig config = MakeScenarioConfig(kind, joints, 5, duration);
+  ScenarioConfig config = MakeScenarioConfig(kind, docking, 5, duration);
   config.envelope = envelope;
   config.physics = physics;
   auto sim = MakeScenario(config);
@@ -77,17 +77,18 @@ TEST_CASE("no envelope gives exactly the bits of the task without one, for every
           "[envelope]") {
   // Golden fitnesses of `ahhs-sim --drive D --seed 3 --duration 10` from the build before the
   // envelope existed (physics versions 2026-12-01 / 2026-12-01.2, still simulated on request).
-  CHECK(DriveEpisode(ScenarioKind::kGait, Joints::kDamped, DriveKind::kWave, 3, 10, {}, nullptr,
-                     "2026-12-01.2") == 0.7291256053748767);
-  CHECK(DriveEpisode(ScenarioKind::kGait, Joints::kFixed, DriveKind::kWave, 3, 10, {}, nullptr,
+  CHECK(DriveEpisode(ScenarioKind::kGait, DockingKind::kDamped, DriveKind::kWave, 3, 10, {},
+                     nullptr, "2026-12-01.2") == 0.7291256053748767);
+  CHECK(DriveEpisode(ScenarioKind::kGait, DockingKind::kFixed, DriveKind::kWave, 3, 10, {}, nullptr,
                      "2026-12-01") == 0.71924482214441543);
-  CHECK(DriveEpisode(ScenarioKind::kPendulum, Joints::kDamped, DriveKind::kSwingUp, 3, 10) ==
+  CHECK(DriveEpisode(ScenarioKind::kPendulum, DockingKind::kDamped, DriveKind::kSwingUp, 3, 10) ==
         0.55936332404768008);
 }
 
 TEST_CASE("each envelope key perturbs the episode, and the same seed gives the same bits",
           "[envelope]") {
-  const double plain = DriveEpisode(ScenarioKind::kGait, Joints::kFixed, DriveKind::kWave, 3, 5);
+  const double plain =
+      DriveEpisode(ScenarioKind::kGait, DockingKind::kFixed, DriveKind::kWave, 3, 5);
   for (const auto& k : EnvelopeKeys()) {
     // The pendulum's keys below; sensor noise cannot change an open-loop drive (its own test).
     if (k.field == &Envelope::start_angle || k.field == &Envelope::cart_speed ||
@@ -95,28 +96,30 @@ TEST_CASE("each envelope key perturbs the episode, and the same seed gives the s
       continue;
     Envelope e;
     e.*k.field = EnvelopePreset("paper").*k.field;
-    const double a = DriveEpisode(ScenarioKind::kGait, Joints::kFixed, DriveKind::kWave, 3, 5, e);
-    const double b = DriveEpisode(ScenarioKind::kGait, Joints::kFixed, DriveKind::kWave, 3, 5, e);
+    const double a =
+        DriveEpisode(ScenarioKind::kGait, DockingKind::kFixed, DriveKind::kWave, 3, 5, e);
+    const double b =
+        DriveEpisode(ScenarioKind::kGait, DockingKind::kFixed, DriveKind::kWave, 3, 5, e);
     INFO(k.name);
     CHECK(a == b);
     CHECK(a != plain);
   }
   const double pendulum =
-      DriveEpisode(ScenarioKind::kPendulum, Joints::kDamped, DriveKind::kSwingUp, 3, 5);
+      DriveEpisode(ScenarioKind::kPendulum, DockingKind::kDamped, DriveKind::kSwingUp, 3, 5);
   for (auto field : {&Envelope::start_angle, &Envelope::cart_speed}) {
     Envelope e;
     e.*field = EnvelopePreset("paper").*field;
-    CHECK(DriveEpisode(ScenarioKind::kPendulum, Joints::kDamped, DriveKind::kSwingUp, 3, 5, e) !=
-          pendulum);
+    CHECK(DriveEpisode(ScenarioKind::kPendulum, DockingKind::kDamped, DriveKind::kSwingUp, 3, 5,
+                       e) != pendulum);
   }
 }
 
 TEST_CASE("sensor noise stays within its width and the readings' range", "[envelope]") {
   std::vector<double> clean, noisy;
-  DriveEpisode(ScenarioKind::kGait, Joints::kFixed, DriveKind::kZero, 3, 0.1, {}, &clean);
+  DriveEpisode(ScenarioKind::kGait, DockingKind::kFixed, DriveKind::kZero, 3, 0.1, {}, &clean);
   Envelope e;
   e.sensor_noise = 0.023;
-  DriveEpisode(ScenarioKind::kGait, Joints::kFixed, DriveKind::kZero, 3, 0.1, e, &noisy);
+  DriveEpisode(ScenarioKind::kGait, DockingKind::kFixed, DriveKind::kZero, 3, 0.1, e, &noisy);
   bool any = false;
   for (std::size_t j = 0; j < clean.size(); ++j) {
     CHECK(noisy[j] >= 0);
@@ -131,11 +134,11 @@ TEST_CASE("a posed start keeps the chain's shape: heading and offset move it who
   Envelope e;
   e.start_heading = 0.5;
   e.start_offset = 0.05;
-  ScenarioConfig config = MakeScenarioConfig(ScenarioKind::kGait, Joints::kDamped, 5, 1);
+  ScenarioConfig config = MakeScenarioConfig(ScenarioKind::kGait, DockingKind::kDamped, 5, 1);
   config.envelope = e;
   GaitScenario posed(config);
   posed.Reset(11);
-  GaitScenario plain(MakeScenarioConfig(ScenarioKind::kGait, Joints::kDamped, 5, 1));
+  GaitScenario plain(MakeScenarioConfig(ScenarioKind::kGait, DockingKind::kDamped, 5, 1));
   plain.Reset(11);
   std::vector<BodyState> a, b;
   posed.Bodies(&a);
@@ -170,7 +173,7 @@ TEST_CASE("envelope presets and checks", "[envelope]") {
 }
 
 TEST_CASE("the envelope survives the wire, and a RESET with a bad one is refused", "[envelope]") {
-  ScenarioConfig config = MakeScenarioConfig(ScenarioKind::kGait, Joints::kFixed, 4, 3);
+  ScenarioConfig config = MakeScenarioConfig(ScenarioKind::kGait, DockingKind::kFixed, 4, 3);
   config.envelope = EnvelopePreset("wide");
   config.envelope.cart_speed = 0.125;
   sim_control_t reset{};

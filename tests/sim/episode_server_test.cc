@@ -37,7 +37,7 @@ struct Rig {
     c.command = command;
     c.episode = episode;
     sim::ScenarioConfig config =
-        sim::MakeScenarioConfig(sim::ScenarioKind::kGait, sim::Joints::kDamped, 3, 0.5);
+        sim::MakeScenarioConfig(sim::ScenarioKind::kGait, sim::DockingKind::kDamped, 3, 0.5);
     config.envelope = envelope;
     sim::ScenarioToWire(config, &c);
     c.clock_mode = realtime ? sim_control_t::MODE_REALTIME : sim_control_t::MODE_LOCKSTEP;

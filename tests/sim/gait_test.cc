@@ -12,10 +12,11 @@
 using namespace ahhs::sim;
 
 namespace {
-ScenarioConfig Gait(Joints joints = Joints::kDamped, int modules = 5, double duration = 60) {
+ScenarioConfig Gait(DockingKind docking = DockingKind::kDamped, int modules = 5,
+                    double duration = 60) {
   ScenarioConfig c;
   c.kind = ScenarioKind::kGait;
-  c.joints = joints;
+  c.docking = docking;
   c.num_modules = modules;
   c.duration = duration;
   return c;
@@ -33,11 +34,11 @@ void RunDrive(GaitScenario& g, DriveKind drive) {
 }  // namespace
 
 TEST_CASE("gait: with zero drive the chain stays put", "[sim][gait]") {
-  for (Joints j : {Joints::kDamped, Joints::kFixed}) {
+  for (DockingKind j : {DockingKind::kDamped, DockingKind::kFixed}) {
     GaitScenario g(Gait(j));
     g.Reset(1);
     RunDrive(g, DriveKind::kZero);
-    INFO(JointsName(j));
+    INFO(DockingName(j));
     CHECK(g.tick() == 1200);
     CHECK(g.Fitness() < 0.02);
   }
@@ -69,9 +70,9 @@ struct HeldCommand {
   double unreached_std;  // over hinges that did not: largest angle std after 10 s
 };
 
-HeldCommand HoldCommand(Joints joints, const std::array<double, 5>& command,
+HeldCommand HoldCommand(DockingKind docking, const std::array<double, 5>& command,
                         const GaitConstants& constants = {}) {
-  GaitScenario g(Gait(joints), constants);
+  GaitScenario g(Gait(docking), constants);
   g.Reset(1);
   for (int m = 0; m < 5; ++m) g.SetActuators(m, &command[static_cast<std::size_t>(m)]);
   std::array<double, 3> at5{};
@@ -112,13 +113,13 @@ TEST_CASE("gait: a constant command does not move the organism, and its hinges s
   // or resting where gravity and contact keep it from its target (without gear friction such
   // hinges rocked in place, docs/scenarios.md).
   const auto commands = ConstantCommands();
-  for (Joints j : {Joints::kDamped, Joints::kFixed}) {
+  for (DockingKind j : {DockingKind::kDamped, DockingKind::kFixed}) {
     double worst_drift = 0, worst_reached = 0, worst_unreached = 0;
     for (const auto& c : commands) {
       const HeldCommand h = HoldCommand(j, c);
-      INFO(JointsName(j) << " command " << c[0] << " " << c[1] << " " << c[2] << " " << c[3] << " "
-                         << c[4] << ": drift " << h.drift << " m, hinge std " << h.steadiest_gap
-                         << " (reached), " << h.unreached_std << " (not reached)");
+      INFO(DockingName(j) << " command " << c[0] << " " << c[1] << " " << c[2] << " " << c[3] << " "
+                          << c[4] << ": drift " << h.drift << " m, hinge std " << h.steadiest_gap
+                          << " (reached), " << h.unreached_std << " (not reached)");
       CHECK(h.drift <= 0.02);
       CHECK(h.steadiest_gap < 0.01);
       CHECK(h.unreached_std < 0.01);
@@ -126,9 +127,9 @@ TEST_CASE("gait: a constant command does not move the organism, and its hinges s
       worst_reached = std::max(worst_reached, h.steadiest_gap);
       worst_unreached = std::max(worst_unreached, h.unreached_std);
     }
-    WARN(JointsName(j) << ": largest drift " << worst_drift << " m; largest hinge std "
-                       << worst_reached << " rad at the target, " << worst_unreached
-                       << " rad short of it");
+    WARN(DockingName(j) << ": largest drift " << worst_drift << " m; largest hinge std "
+                        << worst_reached << " rad at the target, " << worst_unreached
+                        << " rad short of it");
   }
 }
 
@@ -138,18 +139,18 @@ TEST_CASE("gait: without gear friction a stalled servo rocks its chain", "[sim][
   GaitConstants frictionless;
   frictionless.servo_gear_friction = 0;
   const std::array<double, 5> arch{0.7, 0.7, 0.7, 0.7, 0.7};
-  CHECK(HoldCommand(Joints::kFixed, arch, frictionless).unreached_std > 0.05);
-  CHECK(HoldCommand(Joints::kFixed, arch).unreached_std < 0.01);
+  CHECK(HoldCommand(DockingKind::kFixed, arch, frictionless).unreached_std > 0.05);
+  CHECK(HoldCommand(DockingKind::kFixed, arch).unreached_std < 0.01);
 }
 
 TEST_CASE("gait: a travelling wave moves the chain", "[sim][gait]") {
   // No upper bound on the fitness: beyond the wall the chain may pass between the cubes and go
   // on (a converged solver takes seeds 1-3 past 4.0); "does not fly" is tested on the bodies.
-  for (Joints j : {Joints::kDamped, Joints::kFixed}) {
+  for (DockingKind j : {DockingKind::kDamped, DockingKind::kFixed}) {
     GaitScenario g(Gait(j));
     g.Reset(1);
     RunDrive(g, DriveKind::kWave);
-    INFO(JointsName(j) << " fitness " << g.Fitness());
+    INFO(DockingName(j) << " fitness " << g.Fitness());
     CHECK(g.Fitness() > 0.3);
   }
 }
@@ -158,7 +159,7 @@ TEST_CASE("gait: the chain stays on the ground", "[sim][gait]") {
   // The servo lifts at most two modules and its own half: a half's centre can rise to about
   // 0.3 m, 0.4 m on top of a cube. Higher means the solver threw the chain.
   std::vector<BodyState> bodies;
-  for (Joints j : {Joints::kDamped, Joints::kFixed}) {
+  for (DockingKind j : {DockingKind::kDamped, DockingKind::kFixed}) {
     for (std::uint64_t seed : {1, 2, 3}) {
       GaitScenario g(Gait(j));
       g.Reset(seed);
@@ -174,7 +175,7 @@ TEST_CASE("gait: the chain stays on the ground", "[sim][gait]") {
           if (b.module >= 0) highest = std::max(highest, b.position[2]);
         if (status != StepStatus::kRunning) break;
       }
-      INFO(JointsName(j) << " seed " << seed << " highest half centre " << highest << " m");
+      INFO(DockingName(j) << " seed " << seed << " highest half centre " << highest << " m");
       CHECK(g.tick() == 1200);
       CHECK(highest < 0.45);
     }
@@ -190,15 +191,15 @@ TEST_CASE("gait: on open ground the wave goes as far as with a converged solver"
   converged.physics_step_fixed = converged.physics_step_damped = converged.control_period / 20;
   converged.solver_iterations = 40;
   converged.solver_relaxation_fixed = converged.solver_relaxation_damped = 1.3;
-  for (Joints j : {Joints::kDamped, Joints::kFixed}) {
+  for (DockingKind j : {DockingKind::kDamped, DockingKind::kFixed}) {
     for (std::uint64_t seed : {1, 2}) {
       GaitScenario g(Gait(j, 5, 6)), reference(Gait(j, 5, 6), converged);
       g.Reset(seed);
       reference.Reset(seed);
       RunDrive(g, DriveKind::kWave);
       RunDrive(reference, DriveKind::kWave);
-      INFO(JointsName(j) << " seed " << seed << ": " << g.Cost() << " m, converged "
-                         << reference.Cost() << " m");
+      INFO(DockingName(j) << " seed " << seed << ": " << g.Cost() << " m, converged "
+                          << reference.Cost() << " m");
       CHECK(reference.Cost() > 0.5);  // 6 s of the wave on open ground
       CHECK(g.Cost() > 0.8 * reference.Cost());
       CHECK(g.Cost() < 1.2 * reference.Cost());
@@ -209,8 +210,8 @@ TEST_CASE("gait: on open ground the wave goes as far as with a converged solver"
 TEST_CASE("gait: hinges reach commanded angles", "[sim][gait]") {
   // Every hinge of a 3-module chain to +45 degrees, then the middle one to -30: within 0.03 rad
   // after 1.5 s (the servo is speed- and torque-limited).
-  for (Joints j : {Joints::kDamped, Joints::kFixed}) {
-    INFO(JointsName(j));
+  for (DockingKind j : {DockingKind::kDamped, DockingKind::kFixed}) {
+    INFO(DockingName(j));
     GaitScenario g(Gait(j, 3, 10));
     g.Reset(1);
     const double half[1] = {0.5};
@@ -228,8 +229,8 @@ TEST_CASE("gait: the servo lifts two neighbouring modules, not three", "[sim][ga
   // The last module's back half is held; its hinge raises everything in front of it: its own
   // front half plus `lifted` modules (a negative hinge angle lifts the front). With both
   // dockings: with ODE's default relaxation the damped chain's servo lifted only 0.5 rad.
-  auto lift = [](Joints joints, int lifted) {
-    GaitScenario g(Gait(joints, lifted + 1, 10));
+  auto lift = [](DockingKind docking, int lifted) {
+    GaitScenario g(Gait(docking, lifted + 1, 10));
     g.Reset(1);
     g.AnchorHalf(lifted, true);
     const double up[1] = {-1.0}, flat[1] = {0.0};
@@ -238,8 +239,8 @@ TEST_CASE("gait: the servo lifts two neighbouring modules, not three", "[sim][ga
     for (int t = 0; t < 60; ++t) g.Step();
     return -g.HingeAngle(lifted);
   };
-  for (Joints j : {Joints::kDamped, Joints::kFixed}) {
-    INFO(JointsName(j));
+  for (DockingKind j : {DockingKind::kDamped, DockingKind::kFixed}) {
+    INFO(DockingName(j));
     CHECK(lift(j, 1) > 1.5);
     CHECK(lift(j, 2) > 1.5);  // holding torque needed 1.53 N m < 2.2 N m
     CHECK(lift(j, 3) < 0.3);  // 3.0 N m needed: the servo stalls
@@ -247,7 +248,7 @@ TEST_CASE("gait: the servo lifts two neighbouring modules, not three", "[sim][ga
 }
 
 TEST_CASE("gait: fixed and damped docking give different trajectories", "[sim][gait]") {
-  GaitScenario damped(Gait(Joints::kDamped, 5, 10)), fixed(Gait(Joints::kFixed, 5, 10));
+  GaitScenario damped(Gait(DockingKind::kDamped, 5, 10)), fixed(Gait(DockingKind::kFixed, 5, 10));
   damped.Reset(1);
   fixed.Reset(1);
   RunDrive(damped, DriveKind::kWave);
@@ -311,7 +312,7 @@ TEST_CASE("gait: reset(seed) and the same commands give bit-identical runs",
                  {b.position[0], b.position[1], b.position[2], b.quaternion[0], b.quaternion[3]});
     return out;
   };
-  GaitScenario a(Gait(Joints::kDamped, 5, 15)), b(Gait(Joints::kDamped, 5, 15));
+  GaitScenario a(Gait(DockingKind::kDamped, 5, 15)), b(Gait(DockingKind::kDamped, 5, 15));
   const auto first = run(a, 3);
   run(a, 4);  // another episode in between must leave no trace
   CHECK(run(a, 3) == first);
@@ -319,7 +320,7 @@ TEST_CASE("gait: reset(seed) and the same commands give bit-identical runs",
 }
 
 TEST_CASE("gait: non-finite commands are ignored, a blow-up fails the episode", "[sim][gait]") {
-  GaitScenario g(Gait(Joints::kFixed, 2, 5));
+  GaitScenario g(Gait(DockingKind::kFixed, 2, 5));
   g.Reset(1);
   const double nan[1] = {std::nan("")};
   g.SetActuators(0, nan);
@@ -331,7 +332,7 @@ TEST_CASE("gait: non-finite commands are ignored, a blow-up fails the episode", 
   wild.servo_gain = 1e12;
   wild.servo_max_speed = 1e12;
   wild.servo_max_torque = 1e12;
-  GaitScenario runaway(Gait(Joints::kFixed, 2, 5), wild);
+  GaitScenario runaway(Gait(DockingKind::kFixed, 2, 5), wild);
   runaway.Reset(1);
   const double full[1] = {1.0};
   runaway.SetActuators(0, full);
@@ -343,7 +344,7 @@ TEST_CASE("gait: non-finite commands are ignored, a blow-up fails the episode", 
   // instead of the process aborting.
   GaitConstants broken;
   broken.gravity = std::nan("");
-  GaitScenario bad(Gait(Joints::kFixed, 2, 5), broken);
+  GaitScenario bad(Gait(DockingKind::kFixed, 2, 5), broken);
   bad.Reset(1);
   CHECK(bad.Step() == StepStatus::kFailed);
   CHECK_THAT(bad.error(), Catch::Contains("physics blew up"));
@@ -352,7 +353,7 @@ TEST_CASE("gait: non-finite commands are ignored, a blow-up fails the episode", 
 
 TEST_CASE("scenario configs are checked", "[sim]") {
   CHECK_THROWS_AS(ParseScenarioKind("walker"), std::invalid_argument);
-  CHECK_THROWS_AS(ParseJoints("loose"), std::invalid_argument);
+  CHECK_THROWS_AS(ParseDocking("loose"), std::invalid_argument);
   ScenarioConfig c = Gait();
   c.num_modules = 1;
   CHECK_THAT(CheckConfig(c), Catch::Contains("modules"));

@@ -14,7 +14,7 @@ damped=$AHHS_SOURCE_DIR/tests/sim/data/gait-damped-ahhs2-30-evolved.json        
 die() { echo "FAIL: $*" >&2; exit 1; }  # inside $(...)
 # median NAME JOINTS GENOME STEP [OPTION...]: the robust median of GENOME at physics step STEP (s).
 median() {
-  "$R" --genome "$3" --joints "$2" --physics-step "$4" "${@:5}" --robustness 8 --robustness-csv $tmp/$1.csv \
+  "$R" --genome "$3" --docking "$2" --physics-step "$4" "${@:5}" --robustness 8 --robustness-csv $tmp/$1.csv \
     >$tmp/$1.out 2>&1 || die "$1: $(cat $tmp/$1.out)"
   python3 -c "
 import csv, statistics
@@ -26,7 +26,7 @@ print(statistics.median(float(r['fitness']) for r in rows))" || die "$1: $(cat $
 close() { python3 -c "import sys; sys.exit(0 if abs($1 - $2) <= $3 else 1)"; }
 
 echo "== the best of an evolution is a knife-edge; its perturbed replays say so"
-"$R" --genome $fixed --joints fixed --robustness 8 >$tmp/knife.out 2>&1 || fail "$(cat $tmp/knife.out)"
+"$R" --genome $fixed --docking fixed --robustness 8 >$tmp/knife.out 2>&1 || fail "$(cat $tmp/knife.out)"
 grep -q "reproduced exactly" $tmp/knife.out &&
   grep -q "this fitness 2.118 is above every perturbed replay: a knife-edge" $tmp/knife.out ||
   fail "$(cat $tmp/knife.out)"
@@ -59,11 +59,11 @@ close $o2 $d2 0.2 || fail "damped docking: robust median $d2 in the physics of 2
 fi
 
 echo "== bad options"
-"$R" --genome $fixed --joints fixed --robustness-csv $tmp/x.csv >$tmp/out 2>&1
+"$R" --genome $fixed --docking fixed --robustness-csv $tmp/x.csv >$tmp/out 2>&1
 [[ $? == 1 ]] && grep -q "robustness-csv needs --robustness N" $tmp/out || fail "$(cat $tmp/out)"
-"$R" --genome $fixed --joints fixed --friction-scale 0 >$tmp/out 2>&1
+"$R" --genome $fixed --docking fixed --friction-scale 0 >$tmp/out 2>&1
 [[ $? == 2 ]] || fail "--friction-scale 0: $(cat $tmp/out)"
-"$R" --genome $fixed --joints fixed --physics 2026-11-22 >$tmp/out 2>&1
+"$R" --genome $fixed --docking fixed --physics 2026-11-22 >$tmp/out 2>&1
 [[ $? == 1 ]] && grep -q "physics: this build simulates the gait physics of 2026-12-04, 2026-12-01, not 2026-11-22" $tmp/out ||
   fail "--physics 2026-11-22: $(cat $tmp/out)"
 echo PASS

@@ -150,7 +150,7 @@ if ! ci_tier_only "ahhs-study report"; then
 # Of the study directory (its runs read from their summaries, not their databases) and of an
 # export: the same numbers.
 "$S" report $tmp/A -o $tmp/RA >$tmp/out 2>&1 || fail "report: $(cat $tmp/out)"
-grep -q "results.md, results.json and one directory per task (4 of 4 runs complete)" $tmp/out || fail "$(cat $tmp/out)"
+grep -q "results.md, results.json and one directory per scenario (4 of 4 runs complete)" $tmp/out || fail "$(cat $tmp/out)"
 [[ -s $tmp/RA/results.md && -s $tmp/RA/pendulum/box_best.png && -s $tmp/RA/pendulum/box_robust.png &&
    -s $tmp/RA/pendulum/neighbourhood-pend1/seed-1/neighbourhood.png &&
    -s $tmp/RA/pendulum/neighbourhood-pend1/seed-2/neighbourhood.png &&

@@ -15,7 +15,7 @@ js() { "$bin/ahhs-capture" probe "$page" --eval "$1" "${@:2}"; }
 source "$AHHS_SOURCE_DIR/tests/tools/view_lib.sh"
 
 echo "== 1. a replay log in the browser: bodies, ticks, seek, step, speed, module colours"
-"$bin/ahhs-replay" --genome "$fixed" --scenario gait --joints fixed --log fixed.lcm >/dev/null ||
+"$bin/ahhs-replay" --genome "$fixed" --scenario gait --docking fixed --log fixed.lcm >/dev/null ||
   fail "replay"
 start_view fixed.lcm
 # One page load, every check's value at once (a probe starts a Chromium: seconds each).
@@ -93,7 +93,7 @@ grep -Eq "garbage at byte|corrupt event header at byte" <("$bin/ahhs-view" garba
 grep -q "not an LCM log" <("$bin/ahhs-view" text.lcm 2>&1) || fail "text"
 
 echo "== 3. a video of a replay: 1280x720 H.264, its duration and frame count, frames that differ"
-"$bin/ahhs-replay" --genome "$fixed" --scenario gait --joints fixed --video fixed.mp4 --from 8 \
+"$bin/ahhs-replay" --genome "$fixed" --scenario gait --docking fixed --video fixed.mp4 --from 8 \
   --to 12 | tail -2 || fail "ahhs-replay --video"
 probe=$(ffprobe -v error -select_streams v:0 -count_frames -show_entries \
   stream=codec_name,width,height,nb_read_frames,r_frame_rate:format=duration -of json fixed.mp4)
@@ -117,7 +117,7 @@ share = sum(diff.histogram()[255:]) / (a.width * a.height)
 print("  frames at 8.5 s and 11.5 s: %.1f %% of pixels differ" % (100 * share))
 assert share > 0.02
 EOF
-"$bin/ahhs-replay" --genome "$fixed" --scenario gait --joints fixed --video fixed.mp4 >/dev/null 2>err.txt
+"$bin/ahhs-replay" --genome "$fixed" --scenario gait --docking fixed --video fixed.mp4 >/dev/null 2>err.txt
 [[ $? == 2 ]] && grep -q "exists" err.txt || fail "an existing video is refused: $(cat err.txt)"
 
 echo "== 4. a filmstrip: 8 frames in one PNG"

@@ -39,7 +39,7 @@ kill $view; wait $view
 
 echo "== 2. a viewer takes no part in the lockstep: one that vanishes stalls and changes nothing"
 run_lockstep() {
-  "$bin/ahhs-launch" --scenario gait --joints fixed --genome "$fixed" --duration 60 --arena VIEW4 \
+  "$bin/ahhs-launch" --scenario gait --docking fixed --genome "$fixed" --duration 60 --arena VIEW4 \
     --lcm-url "$url" --timeout 120 "$@" 2>&1 | sed -n 's/^fitness: //p'
 }
 alone=$(run_lockstep --log launched.lcm)
@@ -96,7 +96,7 @@ for g in range(2):
     print(json.dumps({"v": 2, "generation": g,
                       "genomes": [{"vector": [0.3 + 0.2 * g + 0.1 * i] * 61} for i in range(2)]}))
 PY
-"$bin/ahhs-evaluate" --scenario gait --joints fixed --duration 5 --variant ahhs2 --hormones 3 \
+"$bin/ahhs-evaluate" --scenario gait --docking fixed --duration 5 --variant ahhs2 --hormones 3 \
   --rules 4 --workers 1 --lcm-url "$url" --out orun --population 2 --generations 2 \
   --optimizer test <requests >evaluate.out 2>&1 || fail "ahhs-evaluate --out: $(cat evaluate.out)"
 start_view --run orun --poll 0.2

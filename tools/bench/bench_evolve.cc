@@ -90,10 +90,10 @@ void EvolveBench::Run() const {
         "pendulum AHHS1 15 H x 60 R, pop 200",
         "--scenario pendulum --variant ahhs1 --hormones 15 --rules 60 --population 200" + common,
         generations, url, workers);
-  for (const char* joints : {"damped", "fixed"})
-    if (task == "all" || task == std::string("gait-") + joints)
-      BenchEvolve(std::string("gait ") + joints + " AHHS2 5 H x 30 R, pop 20",
-                  std::string("--scenario gait --joints ") + joints +
+  for (const char* docking : {"damped", "fixed"})
+    if (task == "all" || task == std::string("gait-") + docking)
+      BenchEvolve(std::string("gait ") + docking + " AHHS2 5 H x 30 R, pop 20",
+                  std::string("--scenario gait --docking ") + docking +
                       " --variant ahhs2 --hormones 5 --rules 30 --population 20" + common,
                   generations, url, workers);
 }

@@ -60,7 +60,7 @@ void BenchSim(const ahhs::sim::ScenarioConfig& config, const char* drive_name, i
       "%-8s %-6s %-6s %2d modules %6.1f s simulated: %7.1f ms wall (seeds: min %.1f, max %.1f), "
       "%5.0fx real time, fitness %.4f",
       as::ScenarioName(config.kind),
-      config.kind == as::ScenarioKind::kGait ? as::JointsName(config.joints) : "-", drive_name,
+      config.kind == as::ScenarioKind::kGait ? as::DockingName(config.docking) : "-", drive_name,
       sim->num_compartments(), sim->sim_time(), 1e3 * median, 1e3 * sorted.front(),
       1e3 * sorted.back(), sim->sim_time() / median, fitnesses.front());
   if (seeds > 1) {
@@ -98,9 +98,9 @@ void SimBench::Run() const {
               static_cast<unsigned long long>(seed) + static_cast<unsigned long long>(seeds) - 1,
               solver.c_str());
   for (const char* drive : {"wave", "zero"}) {
-    for (as::Joints joints : {as::Joints::kDamped, as::Joints::kFixed}) {
+    for (as::DockingKind docking : {as::DockingKind::kDamped, as::DockingKind::kFixed}) {
       as::ScenarioConfig gait;
-      gait.joints = joints;
+      gait.docking = docking;
       BenchSim(gait, drive, repeats, seed, seeds, solver == "chain");
     }
   }

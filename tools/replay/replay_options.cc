@@ -15,16 +15,17 @@ void AddReplayOptions(cli::App& app, ReplayOptions* o) {
                  "individual of --generation (default: that generation's best)");
   app.add_option("--genome", o->genome_file, "a genome file instead of a run")
       ->check(cli::ExistingFile);
-  o->task.Add(app, "with --genome: ", "simulated seconds (0: the task's)");
+  o->task.Add(app, "with --genome: ", "simulated seconds (0: the scenario's)");
   app.add_option("--seed", o->seed,
                  "evaluation seed, 0 to 2^64-1 (default: the stored one: the run's, or the genome "
                  "file's; else 1)")
       ->check(am::SeedTextError);
   app.add_option("--log", o->log_file, "write the episode as an LCM log");
   app.add_option("--csv", o->csv_file, "write the per-tick trace as CSV");
-  app.add_option("--physics-step", o->physics_step,
-                 "seconds per physics step (gait) or RK4 step (pendulum) instead of the task's: "
-                 "does the behaviour depend on the discretisation? (docs/scenarios.md)")
+  app.add_option(
+         "--physics-step", o->physics_step,
+         "seconds per physics step (gait) or RK4 step (pendulum) instead of the scenario's: "
+         "does the behaviour depend on the discretisation? (docs/scenarios.md)")
       ->check(cli::Range(0.0001, 0.05));
   app.add_option("--friction-scale", o->friction_scale,
                  "multiply the friction coefficients (gait) or pivot friction (pendulum) by this: "

@@ -104,7 +104,7 @@ int RunReplay(const ReplayOptions& o, const ReplayTarget& t) {
                 static_cast<unsigned long long>(t.spec.seed));
     if (!t.spec.config.physics.empty())
       std::printf("physics: %s (this build's is %s)\n", t.spec.config.physics.c_str(),
-                  ahhs::sim::PhysicsVersion(t.spec.config.kind, t.spec.config.joints));
+                  ahhs::sim::PhysicsVersion(t.spec.config.kind, t.spec.config.docking));
     if (!result.ok) {
       std::printf("the episode failed: %s (a failed episode scores 0 in a run)\n",
                   result.error.c_str());

@@ -124,7 +124,7 @@ ReplayTarget ResolveTarget(const cli::App& app, const ReplayOptions& o,
   t.spec.config.friction_scale = o.friction_scale;
   t.spec.config.envelope = envelope;
   // The o.physics: --o.physics, else the run's or the genome file's if this build keeps it.
-  const auto keeps = ahhs::sim::ReplayablePhysics(t.spec.config.kind, t.spec.config.joints);
+  const auto keeps = ahhs::sim::ReplayablePhysics(t.spec.config.kind, t.spec.config.docking);
   const std::string current = keeps.front();
   if (!o.physics.empty()) {
     t.spec.config.physics = o.physics;

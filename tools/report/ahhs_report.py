@@ -20,6 +20,7 @@ import argparse
 import os
 import sys
 
+import report_lib
 import step_report
 import study_report
 from report_lib import ReportError, UsageError
@@ -44,7 +45,7 @@ def main(argv):
         p.add_argument("--mutants", type=int, default=35)
         p.add_argument("--mutant-seed", type=int, default=1)
         p.add_argument("--scenario", default="gait", choices=["gait", "pendulum"])
-        p.add_argument("--joints", default="damped", choices=["damped", "fixed"])
+        report_lib.add_docking_option(p)
         p.add_argument("--modules", type=int, default=5)
         p.add_argument("--duration", type=float, default=0)
         p.add_argument("--seed", type=int, default=1, help="episode seed (genome files)")

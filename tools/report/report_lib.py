@@ -1,5 +1,6 @@
 """What the ahhs-report commands share: the run reader, statistics, figures, replays through
 ahhs-replay and the output folder's rules (docs/analysis.md). Imports no other report module."""
+import argparse
 import json
 import math
 import os
@@ -96,7 +97,7 @@ class Run:
             return [self.path]
         c = self.config
         argv = ["--genome", os.path.join(self.path, "best.json"), "--scenario", c["scenario"],
-                "--joints", c["joints"], "--modules", str(c["modules"]),
+                "--docking", c["joints"], "--modules", str(c["modules"]),
                 "--duration", repr(float(c["duration"]))]
         # The physics the run was made with (an export's best.json may not name it).
         return argv + (["--physics", self.physics] if self.physics else [])
@@ -464,6 +465,20 @@ def controller_graph(genome, parts, out_dir, written, name="controller", task="g
 
 # ---------------------------------------------------------------------------------------------
 # Commands
+
+
+class _DeprecatedJoints(argparse.Action):
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"{parser.prog}: --joints is deprecated and will go; use --docking", file=sys.stderr)
+        setattr(namespace, self.dest, values)
+
+
+def add_docking_option(parser):
+    """--docking damped|fixed (args.docking), and --joints, its old name, for one release."""
+    parser.add_argument("--docking", default="damped", choices=["damped", "fixed"],
+                        help="gait docking")
+    parser.add_argument("--joints", dest="docking", choices=["damped", "fixed"],
+                        action=_DeprecatedJoints, help="deprecated: use --docking")
 
 
 def find_bin(args):

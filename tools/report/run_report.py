@@ -44,7 +44,7 @@ def report_runs(args):
                             "Best fitness per configuration (two-sided Wilcoxon rank-sum, n >= 2)",
                             "box_best", args.out, written)
     speed_tests = box_figure(groups, speed, "generation",
-                             "Generation reaching 75 % of the task's maximum fitness",
+                             "Generation reaching 75 % of the scenario's maximum fitness",
                              "box_speed", args.out, written, integer=True)
     md = ["# AHHS run report", ""]
     md += ["| configuration | runs | best fitness: median | min | max | generation to 75 %: median |",
@@ -55,7 +55,7 @@ def report_runs(args):
                   f"{np.median(s):g} |")
     md += [""] + [f"Maximum fitness over all {t} runs: {m:.4f}; 75 % of it is {level[t]:.4f}."
                   for t, m in overall.items()]
-    md += ["Tests compare configurations of the same task only."]
+    md += ["Tests compare configurations of the same scenario only."]
     if censored:
         md.append(f"{censored} run(s) never reached it and count as their number of generations.")
     for title, tests in (("Best fitness", best_tests), ("Evolution speed", speed_tests)):
@@ -152,7 +152,7 @@ def report_neighbourhood(args):
     else:
         if not os.path.isfile(args.genome):
             raise ReportError(f"{args.genome}: no such genome file or run directory")
-        argv = ["--genome", args.genome, "--scenario", args.scenario, "--joints", args.joints,
+        argv = ["--genome", args.genome, "--scenario", args.scenario, "--docking", args.docking,
                 "--modules", str(args.modules), "--duration", str(args.duration),
                 "--seed", str(args.seed)]
         if getattr(args, "physics", ""):
@@ -180,7 +180,7 @@ def report_neighbourhood(args):
     written += [rules, body]
     ticks = max(1, len(np.atleast_1d(np.genfromtxt(body, delimiter=",", names=True))))
     task = "pendulum" if args.scenario == "pendulum" and not os.path.isdir(args.genome) else (
-        Run(args.genome).task if os.path.isdir(args.genome) else f"gait-{args.joints}")
+        Run(args.genome).task if os.path.isdir(args.genome) else f"gait-{args.docking}")
     with open(genome_path) as f:
         controller_graph(json.load(f), rule_parts(rules, ticks), args.out, written, task=task)
     keep = np.mean(mutants >= 0.9 * original) if original > 0 else float("nan")

@@ -53,7 +53,7 @@ def post_evaluate(bin_dir, genome, args, step, tmp):
     else:
         if not os.path.isfile(genome):
             raise report.ReportError(f"{genome}: no such genome file or run directory")
-        argv = ["--genome", genome, "--scenario", "gait", "--joints", args.joints,
+        argv = ["--genome", genome, "--scenario", "gait", "--docking", args.docking,
                 "--modules", str(args.modules)]
     argv += ["--physics-step", repr(step), "--post-eval", str(args.episodes),
              "--post-eval-json", out]
@@ -78,7 +78,7 @@ def agrees(row, half):
 def report_steps(args):
     report.prepare_out(args.out, args.overwrite)
     bin_dir = report.find_bin(args)
-    h = args.step or TASK_STEP[args.joints]
+    h = args.step or TASK_STEP[args.docking]
     steps = [h / 2, h, 2 * h]
     rows = []
     with tempfile.TemporaryDirectory(prefix="ahhs-steps-") as tmp:
@@ -106,9 +106,9 @@ def report_steps(args):
     fmt = lambda v: "failed" if v is None else f"{v:.3f}"
     md = ["# Physics step by distribution", "",
           f"{len(args.genomes)} genomes, each post-evaluated on the same {args.episodes} held-out "
-          f"episodes (envelope {args.envelope or 'of the run, or paper'}), {args.joints} docking, "
+          f"episodes (envelope {args.envelope or 'of the run, or paper'}), {args.docking} docking, "
           f"physics {args.physics or 'of each genome (else this build)'}, "
-          f"at {steps[0] * 1e3:g} ms, {steps[1] * 1e3:g} ms (the task's) and {steps[2] * 1e3:g} ms.",
+          f"at {steps[0] * 1e3:g} ms, {steps[1] * 1e3:g} ms (the scenario's) and {steps[2] * 1e3:g} ms.",
           f"A step passes when every genome's median and over-the-wall share agree with those at "
           f"{steps[0] * 1e3:g} ms within {MEDIAN_TOLERANCE:.0%} and {SHARE_TOLERANCE}; in brackets "
           f"after the verdict, the 90 % paired bootstrap interval of the difference of medians.", "",
@@ -140,9 +140,9 @@ def report_steps(args):
 def main(argv):
     p = argparse.ArgumentParser(prog="ahhs-report steps", description=__doc__.split("\n")[0])
     p.add_argument("genomes", nargs="+", help="genome files, or run directories (their best)")
-    p.add_argument("--joints", default="damped", choices=["damped", "fixed"])
+    report.add_docking_option(p)
     p.add_argument("--modules", type=int, default=5)
-    p.add_argument("--step", type=float, help="the step to judge, s (default: the task's)")
+    p.add_argument("--step", type=float, help="the step to judge, s (default: the scenario's)")
     p.add_argument("--episodes", type=int, default=50, help="held-out episodes per genome and step")
     p.add_argument("--envelope", choices=["none", "paper", "wide"],
                    help="default: a run's own envelope, else paper")

@@ -189,7 +189,7 @@ def neighbourhood_of(bin_dir, config, out_dir):
         sub = os.path.join(out_dir, os.path.basename(os.path.normpath(run.path)))
         args = argparse.Namespace(genome=run.path, mutants=MUTANTS, mutant_seed=1, out=sub,
                                   overwrite=True, bin=bin_dir, scenario=run.config["scenario"],
-                                  joints=run.config["joints"], modules=run.config["modules"],
+                                  docking=run.config["joints"], modules=run.config["modules"],
                                   duration=float(run.config["duration"]), seed=1, physics="")
         if run.exported:  # its best genome, episode seed and physics (Run.replay_argv)
             args.genome = os.path.join(run.path, "best.json")
@@ -348,7 +348,7 @@ def write_results(args, name, configs, tasks, maxima, claims):
            ">= 1 % of ticks (median over runs).", "",
            "| configuration | runs | best fitness: median (quartiles) | max | robust median of the max | "
            "robust fitness of the runs' bests: median (quartiles) | "
-           "within 80 % of the task's maximum | runs reaching 75 % of it (median generation of those) | "
+           "within 80 % of the scenario's maximum | runs reaching 75 % of it (median generation of those) | "
            "rules never/seldom | "
            "hormones used |",
            "|---|---|---|---|---|---|---|---|---|---|"]
@@ -393,7 +393,7 @@ def write_results(args, name, configs, tasks, maxima, claims):
         json.dump(results, f, indent=1)
         f.write("\n")
     print(f"study report written to {args.out}: results.md, results.json and one directory "
-          f"per task ({complete} of {planned} runs complete)")
+          f"per scenario ({complete} of {planned} runs complete)")
 
 
 def main(argv):

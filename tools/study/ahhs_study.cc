@@ -135,7 +135,7 @@ int main(int argc, char** argv) {
       ->check(cli::Range(1024, 60000));
   cli::App* report = app.add_subcommand(
       "report",
-      "compare the configurations of each task and the paper's claims (ahhs-report study): "
+      "compare the configurations of each scenario and the paper's claims (ahhs-report study): "
       "figures, results.md");
   std::string report_dir;
   bool overwrite = false, no_replay = false;

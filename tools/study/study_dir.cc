@@ -21,7 +21,7 @@ constexpr const char* kSummaryFile = "summary.json";
 // The physics version a run of this resolved ahhs-evolve configuration is measured with.
 std::string PhysicsOf(const json& evolve_config) {
   return sim::PhysicsVersion(sim::ParseScenarioKind(evolve_config.value("scenario", "gait")),
-                             sim::ParseJoints(evolve_config.value("joints", "damped")));
+                             sim::ParseDocking(evolve_config.value("joints", "damped")));
 }
 constexpr const char* kSummaryFormat = "ahhs-study-run";
 // What an export keeps of a complete run.

@@ -17,7 +17,8 @@ namespace {
 // The keys an ahhs-evolve config file may set (its long options that describe a run).
 const std::set<std::string>& EvolveKeys() {
   static const std::set<std::string> keys{"scenario",
-                                          "joints",
+                                          "docking",
+                                          "joints",  // deprecated: docking
                                           "modules",
                                           "duration",
                                           "variant",

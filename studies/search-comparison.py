@@ -9,7 +9,10 @@ best judged on held-out episodes (docs/results.md, "Searches beyond the GA").
 The GA's runs are the first study's (studies/paper-2010/pendulum-ahhs2-15, seeds 1-10: the
 same preset, the same physics); CMA-ES and MAP-Elites run with examples/optimizers/, each run
 seeded by its number (optimizer and evaluation seeds). `run` is resumable: run it again after a
-stop and every run goes on from its checkpoint. `report` post-evaluates every best genome on 50
+stop and every run goes on from its checkpoint. A finished run is exported to
+studies/search-comparison/runs/SEARCH/seed-N/ (its best.json, generations.csv and, for
+MAP-Elites, archive.json: about 35 kB, committed), and a run with an export is not run again, so
+a fresh machine goes on where the last one stopped. `report` reads the exports and post-evaluates every best genome on 50
 held-out episodes under the `paper` envelope (ahhs-replay --post-eval 50), tests the medians
 with two-sided Wilcoxon rank-sum tests, and writes results.json, results.md and a figure to
 studies/search-comparison/.
@@ -30,6 +33,26 @@ SEARCHES = {
                    "--sigma", "0.1"],
 }
 POST_EVAL = 50
+EXPORT = os.path.join(HERE, "search-comparison", "runs")
+EXPORTED = ["best.json", "generations.csv", "archive.json"]
+
+
+def complete(run_dir):
+    csv = os.path.join(run_dir, "generations.csv")
+    return os.path.exists(csv) and sum(1 for _ in open(csv)) == 201
+
+
+def export(run_dir, name, seed):
+    """Copies a finished run's small files to EXPORT/name/seed-N/ (each file atomically)."""
+    target = os.path.join(EXPORT, name, "seed-%d" % seed)
+    os.makedirs(target, exist_ok=True)
+    for f in EXPORTED:
+        if os.path.exists(os.path.join(run_dir, f)):
+            with open(os.path.join(run_dir, f), "rb") as src:
+                data = src.read()
+            with open(os.path.join(target, f + ".tmp"), "wb") as dst:
+                dst.write(data)
+            os.replace(os.path.join(target, f + ".tmp"), os.path.join(target, f))
 
 
 def run(args):
@@ -41,11 +64,12 @@ def run(args):
                     run_dir, "--bin", args.bin, "--seed", str(seed), "--farm",
                     "--workers %d --lcm-url %s" % (args.workers, args.lcm_url)] + options + \
                 ["--"] + TASK + ["--seed", str(seed)]
-            done = os.path.join(run_dir, "generations.csv")
-            if os.path.exists(done) and sum(1 for _ in open(done)) == 201:
+            if complete(os.path.join(EXPORT, name, "seed-%d" % seed)):
                 continue
-            print("%s seed %d" % (name, seed), flush=True)
-            subprocess.run(argv, check=True, stdout=subprocess.DEVNULL)
+            if not complete(run_dir):
+                print("%s seed %d" % (name, seed), flush=True)
+                subprocess.run(argv, check=True, stdout=subprocess.DEVNULL)
+            export(run_dir, name, seed)
 
 
 def post_eval(bin_dir, genome, out_json):
@@ -74,12 +98,11 @@ def report(args):
             training = json.load(f)["best_fitness"]
         bests["ga"].append((seed, os.path.join(ga, "best.json"), training))
         for name in SEARCHES:
-            run_dir = os.path.join(args.out, name, "seed-%d" % seed)
+            run_dir = os.path.join(EXPORT, name, "seed-%d" % seed)
+            if not complete(run_dir):
+                raise SystemExit("%s: not exported yet; finish it with `run`" % run_dir)
             with open(os.path.join(run_dir, "generations.csv")) as f:
                 rows = list(f)[1:]
-            if len(rows) != 200:
-                raise SystemExit("%s: %d of 200 generations; finish it with `run`" %
-                                 (run_dir, len(rows)))
             training = max(float(r.split(",")[1]) for r in rows)
             bests[name].append((seed, os.path.join(run_dir, "best.json"), training))
     results = {"post_eval_episodes": POST_EVAL, "envelope": "paper", "budget": 40000,

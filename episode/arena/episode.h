@@ -1,4 +1,4 @@
-// One episode of the paper's tasks as an arena runs it: what to run (EpisodeSpec) and what came
+// One episode of the paper's scenarios as an arena runs it: what to run (EpisodeSpec) and what came
 // out (EpisodeResult). Every arena (episode/arena/arena.h) gives the same result to the bit.
 #pragma once
 

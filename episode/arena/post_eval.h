@@ -1,7 +1,7 @@
 // Held-out post-evaluation: does a genome keep its fitness on episodes evolution never saw? It
 // is replayed on N episodes whose seeds come from a stream no run draws its evaluation seeds
 // from, each perturbed by an envelope of noise (sim/core/envelope.h), and summarised by median,
-// quartiles, minimum and the share of episodes that succeed at the task: the gait over the wall
+// quartiles, minimum and the share of episodes that succeed at the scenario: the gait over the wall
 // (fitness > 1), the pendulum with the bob above the pivot in at least 20 % of ticks
 // (docs/evolution.md, "Held-out post-evaluation").
 #pragma once

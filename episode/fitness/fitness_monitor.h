@@ -1,4 +1,4 @@
-// Task fitness computed from the organism's state alone (SIM/STATE), so that a tracking system
+// Scenario fitness computed from the organism's state alone (SIM/STATE), so that a tracking system
 // can replace the simulator. Pure core: feed it states in order, read the fitness.
 #pragma once
 

@@ -42,8 +42,8 @@ int main(int argc, char** argv) {
   cli::App app{
       "ahhs-evaluate: evaluates batches of genomes for any optimizer (JSON lines on "
       "stdin and stdout, docs/protocol.md)"};
-  ahhs::sim::ScenarioOptions task;
-  task.Add(app, "", "episode length in simulated seconds (default: the task's)");
+  ahhs::sim::ScenarioOptions scenario;
+  scenario.Add(app, "", "episode length in simulated seconds (default: the scenario's)");
   ahhs::sim::EnvelopeOptions envelope;
   envelope.Add(app, "envelope of noise of every episode: none, paper or wide (docs/scenarios.md)");
   std::string variant = "ahhs2", aggregate = "mean", url = ahhs::bus::kDefaultLcmUrl,
@@ -124,11 +124,11 @@ int main(int argc, char** argv) {
     if (out_dir.empty() && resume_dir.empty() &&
         (app.count("--population") || app.count("--generations") || app.count("--overwrite")))
       throw std::invalid_argument("--population, --generations and --overwrite go with --out");
-    settings.task = task.Config();
-    settings.task.envelope = envelope.Resolve();
-    const std::string error = ahhs::sim::CheckConfig(settings.task);
+    settings.scenario = scenario.Config();
+    settings.scenario.envelope = envelope.Resolve();
+    const std::string error = ahhs::sim::CheckConfig(settings.scenario);
     if (!error.empty()) throw std::invalid_argument(error);
-    auto probe = ahhs::sim::MakeScenario(settings.task);
+    auto probe = ahhs::sim::MakeScenario(settings.scenario);
     settings.shape.variant =
         variant == "ahhs1" ? ahhs::modules::Variant::kAhhs1 : ahhs::modules::Variant::kAhhs2;
     settings.shape.sensors = probe->num_sensors();
@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
     farm_options.run = ahhs::base::HostName() + "-" + std::to_string(getpid()) + "-evaluate";
     if (!out_dir.empty() || !resume_dir.empty()) {
       ev::EvolveConfig config;
-      config.scenario = settings.task;
+      config.scenario = settings.scenario;
       config.variant = settings.shape.variant;
       config.hormones = settings.shape.hormones;
       config.rules = settings.shape.rules;
@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
       config.optimizer = optimizer;
       store = ev::OpenServiceRun(resume_dir.empty() ? out_dir : resume_dir, !resume_dir.empty(),
                                  overwrite, farm_options.run, &config);
-      settings.task = config.scenario;
+      settings.scenario = config.scenario;
       settings.shape = config.shape();
       settings.trials = config.ga.trials;
       settings.aggregate = config.ga.aggregate;
@@ -166,7 +166,7 @@ int main(int argc, char** argv) {
             .count();
       };
     }
-    farm_options.config = settings.task;  // (a resumed run's own)
+    farm_options.config = settings.scenario;  // (a resumed run's own)
     farm_options.population = ev::kMaxServiceBatch;
     farm_options.trials = settings.trials;
     farm_options.lease.job_deadline =

@@ -17,7 +17,8 @@ namespace ahhs::evolver {
 
 void AddEvolveOptions(cli::App& app, EvolveOptions* o) {
   base::AddStrictTomlConfig(app, "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
-  o->task.Add(app, "", "episode length, simulated seconds (0: the task's, 60 s gait / 3000 ticks)");
+  o->scenario.Add(app, "",
+                  "episode length, simulated seconds (0: the scenario's, 60 s gait / 3000 ticks)");
   app.add_option("--variant", o->variant, "controller: ahhs1 or ahhs2")
       ->check(cli::IsMember({"ahhs1", "ahhs2"}))
       ->capture_default_str();
@@ -74,7 +75,7 @@ void AddEvolveOptions(cli::App& app, EvolveOptions* o) {
       ->check(modules::SeedTextError)
       ->capture_default_str();
   auto* out_opt =
-      app.add_option("--out", o->out_dir, "run directory (default: runs/<time>-<task>)");
+      app.add_option("--out", o->out_dir, "run directory (default: runs/<time>-<scenario>)");
   auto* resume_opt =
       app.add_option("--resume", o->resume_dir, "continue the run stored in this directory");
   out_opt->excludes(resume_opt);
@@ -166,7 +167,7 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
       if (app.count("--post-eval") == 0) o.post_eval = kMainJob.post_eval;
       if (app.count("--validation") == 0) o.validation = kMainJob.validation;
     }
-    config->scenario = o.task.Config();
+    config->scenario = o.scenario.Config();
     config->scenario.envelope = o.envelope.Resolve(main_job ? kMainJob.envelope : "none");
     config->variant = o.variant == "ahhs1" ? modules::Variant::kAhhs1 : modules::Variant::kAhhs2;
     config->hormones = o.hormones;
@@ -188,7 +189,7 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
     config->validation = o.validation;
     config->validation_candidates = o.validation_candidates;
     config->seed = o.seed;
-    if (o.task.duration < 0) throw std::invalid_argument("--duration must not be negative");
+    if (o.scenario.duration < 0) throw std::invalid_argument("--duration must not be negative");
     const std::string error = CheckEvolveConfig(*config);
     if (!error.empty()) throw std::invalid_argument(error);
     if (o.show_config) {
@@ -199,7 +200,7 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
       char stamp[32];
       const std::time_t t = std::time(nullptr);
       std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&t));
-      o.out_dir = std::string("runs/") + stamp + "-" + o.task.scenario;
+      o.out_dir = std::string("runs/") + stamp + "-" + o.scenario.scenario;
     }
     const std::string run_id = base::HostName() + "-" + std::to_string(getpid()) + "-" +
                                std::to_string(std::time(nullptr));

@@ -29,7 +29,7 @@ inline constexpr MainJobSettings kMainJob{3, "paper", 50, 20};
 
 // ahhs-evolve's command line.
 struct EvolveOptions {
-  sim::ScenarioOptions task;
+  sim::ScenarioOptions scenario;
   std::string variant = "ahhs2", out_dir, resume_dir, arena = "direct", url = bus::kDefaultLcmUrl,
               mutation_profile = "paper";
   int hormones = 5, rules = 30, population = 20, generations = 200, elitism = 1, workers = -1,

@@ -42,14 +42,14 @@ EvalService::EvalService(ServiceSettings settings, FitnessEvaluator& evaluator, 
 
 json EvalService::Hello() const {
   json envelope = json::object();
-  for (const auto& k : sim::EnvelopeKeys()) envelope[k.name] = settings_.task.envelope.*k.field;
+  for (const auto& k : sim::EnvelopeKeys()) envelope[k.name] = settings_.scenario.envelope.*k.field;
   const modules::Shape& s = settings_.shape;
   json hello = {{"v", kServiceProtocolVersion},
                 {"service", "ahhs-evaluate"},
-                {"scenario", sim::ScenarioName(settings_.task.kind)},
-                {"joints", sim::DockingName(settings_.task.docking)},
-                {"modules", settings_.task.num_modules},
-                {"duration", settings_.task.duration},
+                {"scenario", sim::ScenarioName(settings_.scenario.kind)},
+                {"joints", sim::DockingName(settings_.scenario.docking)},
+                {"modules", settings_.scenario.num_modules},
+                {"duration", settings_.scenario.duration},
                 {"shape",
                  {{"variant", modules::VariantName(s.variant)},
                   {"hormones", s.hormones},
@@ -60,7 +60,7 @@ json EvalService::Hello() const {
                 {"trials", settings_.trials},
                 {"aggregate", AggregateName(settings_.aggregate)},
                 {"envelope", envelope},
-                {"descriptor", episode::FitnessMonitor::DescriptorNames(settings_.task.kind)},
+                {"descriptor", episode::FitnessMonitor::DescriptorNames(settings_.scenario.kind)},
                 {"max_batch", kMaxServiceBatch}};
   if (run_)
     hello["run"] = {{"dir", run_->store->dir()},
@@ -145,7 +145,7 @@ json EvalService::Ask(const json& request) {
       } else {
         genomes.push_back(modules::GenomeFromJson(docs[i]));
       }
-      const std::string fit = episode::CheckGenomeFits(genomes.back(), settings_.task);
+      const std::string fit = episode::CheckGenomeFits(genomes.back(), settings_.scenario);
       if (!fit.empty()) throw BadRequest(fit);
     } catch (const std::exception& e) {  // GenomeFromJson's and GenomeFromVector's messages
       throw BadRequest(where + ": " + e.what());

@@ -13,7 +13,7 @@
 //           "genome_hash": H, "trials": [{"seed": s, "fitness": f, "descriptor": d}, ...]}, ...]}
 //   error  {"v": 2, "id": ANY or null, "error": "one line"}
 // Trial t of genome i has seed DeriveSeed(S, {i, t}); `ahhs-launch --genome G --seed s` with the
-// service's task and envelope gives its fitness and descriptor bit for bit. F is the trials'
+// service's scenario and envelope gives its fitness and descriptor bit for bit. F is the trials'
 // aggregate, D the mean of their descriptors (a trial whose episode failed has d = null and is
 // left out of D; D is null when every trial failed).
 #pragma once
@@ -37,8 +37,8 @@ inline std::string ServiceVersionLine() {          // for --version
 inline constexpr int kMaxServiceBatch = 100000;
 
 struct ServiceSettings {
-  sim::ScenarioConfig task;  // the envelope included
-  modules::Shape shape;      // of vectors (a genome document brings its own)
+  sim::ScenarioConfig scenario;  // the envelope included
+  modules::Shape shape;          // of vectors (a genome document brings its own)
   int trials = 1;
   Aggregate aggregate = Aggregate::kMean;
   std::uint64_t seed = 1;  // request seeds when a request gives none: DeriveSeed(seed, {n})

@@ -52,10 +52,10 @@ int main(int argc, char** argv) {
       ->check(cli::NonNegativeNumber)
       ->capture_default_str();
   std::string drive = "zero";
-  as::ScenarioOptions task;
+  as::ScenarioOptions scenario;
   std::uint64_t seed = 1;
   bool verbose = false;
-  task.Add(app, "", "episode length, simulated seconds (default: the scenario's)");
+  scenario.Add(app, "", "episode length, simulated seconds (default: the scenario's)");
   auto* drive_opt = app.add_option(
       "--drive", drive,
       "standalone: built-in commands: zero, wave, swingup (pendulum) or inchworm (gait)");
@@ -131,7 +131,7 @@ int main(int argc, char** argv) {
   }
   try {
     as::StandaloneOptions standalone;
-    standalone.task = &task;
+    standalone.scenario = &scenario;
     standalone.drive = drive;
     standalone.seed = seed;
     standalone.verbose = verbose;

@@ -101,11 +101,11 @@ int ServeEpisodes(const std::string& url, const as::EpisodeServerOptions& option
 }
 
 int RunStandalone(const StandaloneOptions& o) {
-  if (o.task->duration_given() && !(o.task->duration > 0))
+  if (o.scenario->duration_given() && !(o.scenario->duration > 0))
     throw std::invalid_argument("--duration must be a positive number of seconds");
-  as::ScenarioConfig config = o.task->Config();
+  as::ScenarioConfig config = o.scenario->Config();
   config.envelope = o.envelope;
-  if (config.kind == as::ScenarioKind::kGait && o.task->modules < 2)
+  if (config.kind == as::ScenarioKind::kGait && o.scenario->modules < 2)
     throw std::invalid_argument("--modules: a gait organism needs at least 2 modules");
   const as::DriveKind drive_kind = as::ParseDrive(o.drive);
   auto sim = as::MakeScenario(config);

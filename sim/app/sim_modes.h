@@ -21,7 +21,7 @@ int ServeEpisodes(const std::string& url, const EpisodeServerOptions& options, i
 
 // One standalone episode with a built-in drive; prints its behaviour, cost and fitness last.
 struct StandaloneOptions {
-  const ScenarioOptions* task = nullptr;
+  const ScenarioOptions* scenario = nullptr;
   std::string drive = "zero";
   std::uint64_t seed = 1;
   bool verbose = false;

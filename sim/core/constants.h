@@ -1,4 +1,4 @@
-// Every physical constant of both tasks, in one place, with its unit. docs/scenarios.md lists
+// Every physical constant of both scenarios, in one place, with its unit. docs/scenarios.md lists
 // them with the reasons for each choice; change both together.
 #pragma once
 
@@ -7,8 +7,8 @@
 
 namespace ahhs::sim {
 
-// The physics a fitness was measured with, per task (sim::PhysicsVersion picks one). Bump one
-// with every change that changes a fitness of that task (constants, solver, sensors): a study
+// The physics a fitness was measured with, per scenario (sim::PhysicsVersion picks one). Bump one
+// with every change that changes a fitness of that scenario (constants, solver, sensors): a study
 // takes an exported run only when it was made with the same physics (tools/study), since the
 // run store cannot tell otherwise. CHANGELOG.md says what each change was.
 inline constexpr const char* kPendulumPhysicsVersion = "2026-12-01";

@@ -1,5 +1,5 @@
 // Built-in commands for running a scenario without controllers (`ahhs-sim --drive`): the
-// physics-only baselines, and designed reference controllers that show a task can be solved in
+// physics-only baselines, and designed reference controllers that show a scenario can be solved in
 // our physics (docs/scenarios.md lists what each one scores).
 #pragma once
 

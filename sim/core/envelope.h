@@ -1,8 +1,8 @@
-// An envelope of noise (Jakobi, "noise and the reality gap"): every episode perturbs the task by
-// factors drawn from its seed, so a controller that scores well scores across the envelope, not
+// An envelope of noise (Jakobi, "noise and the reality gap"): every episode perturbs the scenario
+// by factors drawn from its seed, so a controller that scores well scores across the envelope, not
 // on one trajectory that deterministic chaos favoured (docs/scenarios.md, "Envelope of noise").
 // The draws are a pure function of (envelope, seed, modules), from a stream of their own: the
-// same in every arena. An envelope of zeros is exactly the task without one, bit for bit.
+// same in every arena. An envelope of zeros is exactly the scenario without one, bit for bit.
 #pragma once
 
 #include <cstdint>
@@ -21,7 +21,7 @@ struct Envelope {
   double start_heading = 0;  // rad: the chain's heading at the start, U(-w, w)
   double start_offset = 0;   // m: the chain's start position, U(-w, w) along x and along y
   double sensor_noise = 0;   // added to every proximity reading, U(-w, w), then clamped to [0, 1]
-  // The pendulum (its sensor noise is the task's own, +-2.3 %, with or without an envelope).
+  // The pendulum (its sensor noise is the scenario's own, +-2.3 %, with or without an envelope).
   double start_angle = 0;  // rad: the bob starts U(-w, w) away from hanging straight down
   double cart_speed = 0;   // the cart's top speed (the sensors keep their nominal scale)
 

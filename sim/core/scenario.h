@@ -1,4 +1,4 @@
-// The two tasks of the paper behind one interface: apply actuator values, step one control
+// The two scenarios of the paper behind one interface: apply actuator values, step one control
 // period, read sensors, organism state and fitness (docs/scenarios.md). No LCM, no I/O. One
 // stepping ODE world per process: ODE's solver draws from a process-global random seed (see
 // GaitScenario).
@@ -18,9 +18,9 @@ namespace ahhs::sim {
 enum class ScenarioKind { kGait, kPendulum };
 enum class DockingKind { kDamped, kFixed };
 
-// Two choices the paper leaves open for the pendulum, as task settings (docs/scenarios.md,
+// Two choices the paper leaves open for the pendulum, as scenario settings (docs/scenarios.md,
 // "Choices the paper leaves open"), on the wire in RESET and EVAL/REQUEST. The defaults are the
-// task as it always was, bit for bit.
+// scenario as it always was, bit for bit.
 enum class PendulumWalls { kRigid, kSoft };
 struct PendulumChoices {
   // v_cmd = top speed x clamp(gain x (A1 - A0) / 2, -1, 1): small outputs count `gain` times
@@ -42,12 +42,12 @@ struct ScenarioConfig {
   ScenarioKind kind = ScenarioKind::kGait;
   int num_modules = 5;  // gait: modules in the chain (>= 2); pendulum: always 2
   DockingKind docking = DockingKind::kDamped;  // the gait's docking
-  double duration = 0;  // simulated seconds; 0 = the task's default (60 s / 3000 ticks)
-  // A check, not a task setting: the physics step (gait, ODE) or RK4 step (pendulum) in seconds;
-  // 0 = the task's (docs/scenarios.md). Never on the wire: only a direct replay sets it, to see
-  // whether a behaviour depends on the discretisation.
+  double duration = 0;  // simulated seconds; 0 = the scenario's default (60 s / 3000 ticks)
+  // A check, not a scenario setting: the physics step (gait, ODE) or RK4 step (pendulum) in
+  // seconds; 0 = the scenario's (docs/scenarios.md). Never on the wire: only a direct replay sets
+  // it, to see whether a behaviour depends on the discretisation.
   double physics_step = 0;
-  // A check, not a task setting: scales every Coulomb friction coefficient (gait) or the pivot
+  // A check, not a scenario setting: scales every Coulomb friction coefficient (gait) or the pivot
   // friction (pendulum). Never on the wire: a replay perturbs the physics slightly with it to
   // tell a robust behaviour from one that deterministic chaos happened to favour.
   double friction_scale = 1;
@@ -55,10 +55,10 @@ struct ScenarioConfig {
   // this build still replays (ReplayablePhysics). Never on the wire: only a direct replay sets
   // it, to reproduce a run made with an earlier physics.
   std::string physics;
-  // The envelope of noise every episode of this configuration is perturbed with (a task
+  // The envelope of noise every episode of this configuration is perturbed with (a scenario
   // setting, on the wire in RESET and EVAL/REQUEST: sim/core/envelope.h).
   Envelope envelope;
-  // The pendulum's open choices (a task setting, on the wire in RESET and EVAL/REQUEST).
+  // The pendulum's open choices (a scenario setting, on the wire in RESET and EVAL/REQUEST).
   PendulumChoices pendulum;
 };
 
@@ -70,7 +70,7 @@ const char* DockingName(DockingKind docking);
 
 // The physics version (sim/core/constants.h) a fitness of this configuration is measured with.
 const char* PhysicsVersion(ScenarioKind kind, DockingKind docking);
-// The physics versions this build can simulate for a task: its own first, then earlier ones.
+// The physics versions this build can simulate for a scenario: its own first, then earlier ones.
 std::vector<std::string> ReplayablePhysics(ScenarioKind kind, DockingKind docking);
 
 // Checks a config; returns "" or a message naming the bad field.
@@ -87,7 +87,7 @@ struct ScenarioShape {
 };
 ScenarioShape ShapeOf(const ScenarioConfig& config);
 
-// The docking of both tasks' organisms: a chain, compartment i's back to i + 1's front.
+// The docking of both scenarios' organisms: a chain, compartment i's back to i + 1's front.
 std::vector<std::pair<int, int>> ChainDocking(int compartments);
 
 // Ticks of an episode of `duration` simulated seconds (0: `default_ticks`).

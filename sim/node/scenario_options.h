@@ -18,7 +18,7 @@ struct ScenarioOptions {
   std::string scenario = "gait";
   std::string docking = "damped";
   int modules = 5;
-  double duration = 0;  // s; 0: the task's
+  double duration = 0;  // s; 0: the scenario's
   double pendulum_gain = 1;
   std::string pendulum_walls = "rigid";
 
@@ -53,7 +53,7 @@ struct ScenarioOptions {
         ->capture_default_str();
   }
   bool duration_given() const { return duration_opt_ && duration_opt_->count() > 0; }
-  // The configuration the options name (the task's own checks still apply: CheckConfig).
+  // The configuration the options name (the scenario's own checks still apply: CheckConfig).
   ScenarioConfig Config() const {
     ScenarioConfig c =
         MakeScenarioConfig(ParseScenarioKind(scenario), ParseDocking(docking), modules, duration);

@@ -139,7 +139,7 @@ std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_mod
   c.envelope = envelope;
   if (pendulum_walls != 0 && pendulum_walls != 1)
     return "unknown pendulum walls value " + std::to_string(pendulum_walls);
-  // 0 is the default too, so that a RESET made field by field without it asks for the task.
+  // 0 is the default too, so that a RESET made field by field without it asks for the scenario.
   c.pendulum.actuator_gain = pendulum_actuator_gain == 0 ? 1 : pendulum_actuator_gain;
   c.pendulum.walls = pendulum_walls == 1 ? PendulumWalls::kSoft : PendulumWalls::kRigid;
   const std::string error = CheckConfig(c);

@@ -61,10 +61,11 @@ TEST_CASE("gait descriptor: the centroid's displacement from the first state to 
         std::vector<std::string>{"end_x", "end_y"});
 }
 
-TEST_CASE("the direct and fused arenas give the same descriptor to the bit, any task settings") {
+TEST_CASE(
+    "the direct and fused arenas give the same descriptor to the bit, any scenario settings") {
   for (const auto kind : {sim::ScenarioKind::kPendulum, sim::ScenarioKind::kGait}) {
     for (const auto docking : {sim::DockingKind::kFixed, sim::DockingKind::kDamped}) {
-      // (The pendulum twice: with the task's choices (kDamped, which it ignores) and others.)
+      // (The pendulum twice: with the scenario's choices (kDamped, which it ignores) and others.)
       sim::ScenarioConfig config = sim::MakeScenarioConfig(kind, docking, 5, 3);
       if (kind == sim::ScenarioKind::kPendulum && docking == sim::DockingKind::kFixed) {
         // The pendulum's choices travel in RESET too (the fused arena's sim learns it there).

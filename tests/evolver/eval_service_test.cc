@@ -39,7 +39,7 @@ class SeedFitness : public evolver::FitnessEvaluator {
 
 evolver::ServiceSettings Settings() {
   evolver::ServiceSettings s;
-  s.task = sim::MakeScenarioConfig(sim::ScenarioKind::kGait, sim::DockingKind::kFixed, 5, 4);
+  s.scenario = sim::MakeScenarioConfig(sim::ScenarioKind::kGait, sim::DockingKind::kFixed, 5, 4);
   s.shape = {modules::Variant::kAhhs2, 2, 3, 4, 1};
   s.trials = 3;
   s.aggregate = evolver::Aggregate::kMedian;
@@ -156,7 +156,7 @@ TEST_CASE("a service that records a run commits one generation per request, in o
   ServiceRunDir dir;
   SeedFitness f;
   evolver::EvolveConfig config;
-  config.scenario = Settings().task;
+  config.scenario = Settings().scenario;
   config.variant = modules::Variant::kAhhs2;
   config.hormones = 2;
   config.rules = 3;

@@ -1,5 +1,5 @@
 // The envelope of noise (sim/core/envelope.h): its draws are a pure function of the seed, no
-// envelope is exactly the task without one, and each key perturbs what it names.
+// envelope is exactly the scenario without one, and each key perturbs what it names.
 #include "sim/core/envelope.h"
 
 #include <catch2/catch.hpp>
@@ -73,7 +73,7 @@ TEST_CASE("envelope draws are a pure function of the seed (golden values)", "[en
   CHECK(none.mass_scale == std::vector<double>(5, 1.0));
 }
 
-TEST_CASE("no envelope gives exactly the bits of the task without one, for every task",
+TEST_CASE("no envelope gives exactly the bits of the scenario without one, for every scenario",
           "[envelope]") {
   // Golden fitnesses of `ahhs-sim --drive D --seed 3 --duration 10` from the build before the
   // envelope existed (physics versions 2026-12-01 / 2026-12-01.2, still simulated on request).

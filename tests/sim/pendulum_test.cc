@@ -61,7 +61,7 @@ TEST_CASE("pendulum: released from horizontal, swings with the physical pendulum
   const double period = (t[4] - t[0]) / 4;
   CHECK(period == Approx(1.18034 * 2 * M_PI * std::sqrt(0.5 / 9.81)).epsilon(0.002));
 
-  // Small amplitude (10 degrees) with the task's settings: close to 2 pi sqrt(l/g).
+  // Small amplitude (10 degrees) with the scenario's settings: close to 2 pi sqrt(l/g).
   PendulumScenario q(Pendulum());
   q.Reset(1);
   q.SetState({0, 0, M_PI - 10 * M_PI / 180, 0});
@@ -282,7 +282,7 @@ TEST_CASE("pendulum: an actuator gain multiplies small outputs, clamped at the s
   Drive(p, -0.5, 0.5);                    // 10 * 1 / 2 = 5: clamped to the top speed, 1 m/s
   for (int t = 0; t < 40; ++t) p.Step();  // 0.7 s: short of the wall
   CHECK(p.state().v == Approx(1.0).epsilon(1e-3));
-  // Gain 1 is the task's mapping, bit for bit.
+  // Gain 1 is the scenario's mapping, bit for bit.
   ScenarioConfig one = Pendulum();
   one.pendulum.actuator_gain = 1;
   PendulumScenario a(one), b(Pendulum());

@@ -26,7 +26,7 @@ namespace ahhs::conformance {
 inline constexpr int kModelVectorsVersion = 1;
 
 // The vectors as modules/core computes them (a deterministic set of cases: random AHHS1 and AHHS2
-// genomes of both tasks' shapes and hand-made edge cases).
+// genomes of both scenarios' shapes and hand-made edge cases).
 std::string WriteModelVectors();
 
 // Reads `text` and runs every case through modules/core. Returns "" when every output matches to

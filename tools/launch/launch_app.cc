@@ -24,7 +24,7 @@ namespace ahhs::launch {
 namespace ep = ahhs::episode;
 
 void AddLaunchOptions(cli::App& app, LaunchOptions* o) {
-  o->task.Add(app, "", "episode length, simulated seconds (default: the task's)");
+  o->scenario.Add(app, "", "episode length, simulated seconds (default: the scenario's)");
   app.add_option("--genome", o->genome_file, "genome file (docs/genome.md)")
       ->required()
       ->check(cli::ExistingFile);
@@ -87,9 +87,9 @@ int SpecFromOptions(const cli::App& app, LaunchOptions* o, const ahhs::sim::Enve
     std::cerr << "ahhs-launch: --fused is deprecated and will go; use --arena-kind fused\n";
   o->fused = o->fused || o->arena_kind == "fused";
   try {
-    if (o->task.duration_given() && !(o->task.duration > 0))
+    if (o->scenario.duration_given() && !(o->scenario.duration > 0))
       throw std::invalid_argument("--duration must be positive");
-    spec->config = o->task.Config();
+    spec->config = o->scenario.Config();
     spec->config.envelope = envelope;
     const std::string config_error = ahhs::sim::CheckConfig(spec->config);
     if (!config_error.empty()) throw std::invalid_argument(config_error);

@@ -15,7 +15,7 @@ namespace ahhs::launch {
 
 struct LaunchOptions {
   std::string genome_file, url, arena, log_file, logger = "ahhs-logger", external, hardware_modules;
-  ahhs::sim::ScenarioOptions task;
+  ahhs::sim::ScenarioOptions scenario;
   std::uint64_t seed = 1;
   std::string arena_kind = "processes";  // --arena-kind: processes or fused
   bool fused = false;                    // arena_kind is fused (or the deprecated --fused)

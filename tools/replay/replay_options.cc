@@ -15,7 +15,7 @@ void AddReplayOptions(cli::App& app, ReplayOptions* o) {
                  "individual of --generation (default: that generation's best)");
   app.add_option("--genome", o->genome_file, "a genome file instead of a run")
       ->check(cli::ExistingFile);
-  o->task.Add(app, "with --genome: ", "simulated seconds (0: the scenario's)");
+  o->scenario.Add(app, "with --genome: ", "simulated seconds (0: the scenario's)");
   app.add_option("--seed", o->seed,
                  "evaluation seed, 0 to 2^64-1 (default: the stored one: the run's, or the genome "
                  "file's; else 1)")

@@ -12,7 +12,7 @@ namespace ahhs::replay {
 
 struct ReplayOptions {
   std::string run_dir, genome_file, log_file, csv_file, rules_csv, mutants_csv, body_csv;
-  ahhs::sim::ScenarioOptions task;
+  ahhs::sim::ScenarioOptions scenario;
   int generation = -1, individual = -1, mutants = 0;
   std::uint64_t seed = 1, mutant_seed = 1;
   double physics_step = 0, friction_scale = 1;

@@ -69,7 +69,7 @@ ReplayTarget ResolveTarget(const cli::App& app, const ReplayOptions& o,
       }
     }
   } else {
-    t.spec.config = o.task.Config();
+    t.spec.config = o.scenario.Config();
     const std::string error = ahhs::sim::CheckConfig(t.spec.config);
     if (!error.empty()) throw std::invalid_argument(error);
     nlohmann::json meta;

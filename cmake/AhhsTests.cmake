@@ -42,13 +42,18 @@ function(ahhs_add_catch_test)
   endforeach()
 endfunction()
 
-# ahhs_add_script_test(NAME name COMMAND ... LABELS ... [TIMEOUT s] [COST s] [PACED])
+# ahhs_add_script_test(NAME name COMMAND ... LABELS ... [TIMEOUT s] [COST s]
+#                      [PACED | FARM | REALTIME])
 # COST: about how many seconds it runs; CTest starts the costliest tests first (a fresh clone has
 # no timings of its own). PACED: its processes wait on timeouts (a tenth of a core or less) and
 # it checks nothing a loaded machine changes, so it needs no lock against the others (below);
-# not for real-time episodes, which do not wait for a late process.
+# not for real-time episodes, which do not wait for a late process. FARM: its processes talk
+# only through the evaluation farm (a request and a result an episode, a lost one re-issued; no
+# lockstep arena, no logger) and it checks nothing a loaded machine changes: it may run beside a
+# lockstep test, though not beside another FARM test or a REALTIME one, as it keeps the cores
+# busy. REALTIME: it runs real-time episodes, which do not wait for a late process.
 function(ahhs_add_script_test)
-  cmake_parse_arguments(ARG "PACED" "NAME;TIMEOUT;COST" "COMMAND;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "PACED;FARM;REALTIME" "NAME;TIMEOUT;COST" "COMMAND;LABELS" ${ARGN})
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 300)
   endif()
@@ -63,8 +68,16 @@ function(ahhs_add_script_test)
   # once on a 2-core machine outran lcm-logger and the kernel's socket buffers. One of them may
   # run beside a test of one process or a paced one (a lock, not RUN_SERIAL): most of these
   # tests wait on sockets and lockstep and leave a core idle.
-  if(NOT ARG_PACED AND ("multiprocess" IN_LIST ARG_LABELS OR "lan" IN_LIST ARG_LABELS OR
-                        "chaos" IN_LIST ARG_LABELS))
-    set_tests_properties(${ARG_NAME} PROPERTIES RESOURCE_LOCK ahhs_processes)
+  # A FARM test and a REALTIME one hold a second lock, ahhs_busy_cores: a busy farm beside a
+  # real-time episode would make it miss ticks.
+  if(ARG_FARM)
+    set_tests_properties(${ARG_NAME} PROPERTIES RESOURCE_LOCK ahhs_busy_cores)
+  elseif(NOT ARG_PACED AND ("multiprocess" IN_LIST ARG_LABELS OR "lan" IN_LIST ARG_LABELS OR
+                            "chaos" IN_LIST ARG_LABELS))
+    if(ARG_REALTIME)
+      set_tests_properties(${ARG_NAME} PROPERTIES RESOURCE_LOCK "ahhs_processes;ahhs_busy_cores")
+    else()
+      set_tests_properties(${ARG_NAME} PROPERTIES RESOURCE_LOCK ahhs_processes)
+    endif()
   endif()
 endfunction()

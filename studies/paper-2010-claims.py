@@ -86,11 +86,11 @@ def damped(c):
 
 
 def fixed(c, maxima):
-    # Our maximum: the task's best fitness, or in the robust pass the highest robust fitness.
+    # Our maximum: the scenario's best fitness, or in the robust pass the highest robust fitness.
     top = maxima.get("gait-fixed")
     if c.stat != "best":
         robust = [c.values(n) for n, x in c.by.items()
-                  if x.task == "gait-fixed" and x.runs and c.values(n) is not None]
+                  if x.scenario_label == "gait-fixed" and x.runs and c.values(n) is not None]
         top = max(float(np.max(v)) for v in robust) if robust else None
     ours_max = "our maximum" if c.stat == "best" else "our highest robust fitness"
     for name, share in (("gait-fixed-ahhs2-50", 0.55), ("gait-fixed-ahhs1-80", 0.38)):
@@ -186,7 +186,7 @@ def neighbourhoods(c):
 
 
 def controllers(c, configs):
-    gait = [x for x in configs if x.runs and x.task.startswith("gait")]
+    gait = [x for x in configs if x.runs and x.scenario_label.startswith("gait")]
     uses = [u for x in gait for u in x.controllers]
     claim, paper = "Gait: rules that never or seldom trigger", "about one third"
     if c.not_fitness(claim, paper):
@@ -199,7 +199,7 @@ def controllers(c, configs):
               f"(quartiles {np.percentile(share, 25):.0%} / {np.percentile(share, 75):.0%})",
               ("close" if abs(np.median(share) - 1 / 3) <= CLOSE else "differs") +
               f" (n = {len(uses)} genomes)")
-    damped_uses = [u for x in gait if x.task == "gait-damped" for u in x.controllers]
+    damped_uses = [u for x in gait if x.scenario_label == "gait-damped" for u in x.controllers]
     claim, paper = "Damped gait: hormones and rules a controller uses", "2-3 of 5 hormones, < 10 rules"
     if c.not_fitness(claim, paper):
         pass

@@ -26,7 +26,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.path.dirname(HERE)
 SEEDS = range(1, 11)
-TASK = ["--scenario", "pendulum", "--variant", "ahhs2", "--hormones", "15", "--rules", "15"]
+CONFIGURATION = ["--scenario", "pendulum", "--variant", "ahhs2", "--hormones", "15", "--rules", "15"]
 SEARCHES = {
     "cma-es": ["cmaes.py", "--population", "200", "--generations", "200", "--sigma", "0.2"],
     "map-elites": ["map_elites.py", "--batch", "200", "--generations", "200", "--cells", "10",
@@ -63,7 +63,7 @@ def run(args):
             argv = [sys.executable, os.path.join(SOURCE, "examples", "optimizers", script),
                     run_dir, "--bin", args.bin, "--seed", str(seed), "--farm",
                     "--workers %d --lcm-url %s" % (args.workers, args.lcm_url)] + options + \
-                ["--"] + TASK + ["--seed", str(seed)]
+                ["--"] + CONFIGURATION + ["--seed", str(seed)]
             if complete(os.path.join(EXPORT, name, "seed-%d" % seed)):
                 continue
             if not complete(run_dir):

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""CMA-ES (Hansen and Ostermeier 2001) on an AHHS task, through DEAP's ask/tell cma.Strategy
+"""CMA-ES (Hansen and Ostermeier 2001) on an AHHS scenario, through DEAP's ask/tell cma.Strategy
 (Debian's python3-deap) and the evaluation service. Copy it and change what you like.
 
     python3 examples/optimizers/cmaes.py runs/cma-pendulum \\
@@ -70,12 +70,13 @@ def main():
     p.add_argument("--bin", help="directory of ahhs-evaluate (default: $AHHS_BIN or PATH)")
     p.add_argument("--farm", default="", help="ahhs-evaluate's farm options, e.g. '--workers 2'")
     p.epilog = "After --: ahhs-evaluate's scenario and evaluation options (scenario, shape, trials, envelope, seed)."
-    argv, task = sys.argv[1:], []
+    argv, evaluation = sys.argv[1:], []
     if "--" in argv:
-        argv, task = argv[:argv.index("--")], argv[argv.index("--") + 1:]
+        argv, evaluation = argv[:argv.index("--")], argv[argv.index("--") + 1:]
     a = p.parse_args(argv)
     binary = os.path.join(a.bin, "ahhs-evaluate") if a.bin else None
-    run_search(a.run_dir, lambda ev: CmaEs(ev.shape, a.population, a.sigma, a.seed), task=task,
+    run_search(a.run_dir, lambda ev: CmaEs(ev.shape, a.population, a.sigma, a.seed),
+               evaluation=evaluation,
                population=a.population, generations=a.generations, name="cma-es (deap)",
                farm=a.farm.split(), binary=binary, log=lambda line: print(line, flush=True))
     print("best genome: ahhs-replay %s" % a.run_dir)

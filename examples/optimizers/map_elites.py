@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""MAP-Elites (Mouret and Clune 2015) on an AHHS task: a grid over the behaviour descriptor
+"""MAP-Elites (Mouret and Clune 2015) on an AHHS scenario: a grid over the behaviour descriptor
 (docs/scenarios.md, "Behaviour descriptors"), one elite per cell, through ahhs.qd (pyribs'
 shape) and the evaluation service. Copy it and change what you like.
 
@@ -77,9 +77,9 @@ def main():
     p.add_argument("--bin", help="directory of ahhs-evaluate (default: $AHHS_BIN or PATH)")
     p.add_argument("--farm", default="", help="ahhs-evaluate's farm options, e.g. '--workers 2'")
     p.epilog = "After --: ahhs-evaluate's scenario and evaluation options (scenario, shape, trials, envelope, seed)."
-    argv, task = sys.argv[1:], []
+    argv, evaluation = sys.argv[1:], []
     if "--" in argv:
-        argv, task = argv[:argv.index("--")], argv[argv.index("--") + 1:]
+        argv, evaluation = argv[:argv.index("--")], argv[argv.index("--") + 1:]
     a = p.parse_args(argv)
     binary = os.path.join(a.bin, "ahhs-evaluate") if a.bin else None
 
@@ -87,8 +87,8 @@ def main():
         return MapElites(ev.shape, ev.hello["scenario"], ev.descriptor_names, a.cells, a.batch,
                          a.sigma, a.seed)
 
-    me = run_search(a.run_dir, make, task=task, population=a.batch, generations=a.generations,
-                    name="map-elites", farm=a.farm.split(), binary=binary,
+    me = run_search(a.run_dir, make, evaluation=evaluation, population=a.batch,
+                    generations=a.generations, name="map-elites", farm=a.farm.split(), binary=binary,
                     log=lambda line: print(line, flush=True))
     stats = me.archive.stats
     print("archive: %d of %d cells, best %.6g" % (stats["num_elites"], a.cells * a.cells,

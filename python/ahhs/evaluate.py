@@ -34,7 +34,7 @@ def find_service(binary=None):
 
 class Evaluator:
     """One ahhs-evaluate process for the lifetime of the object (a context manager). `options`
-    are its command-line options (task, envelope, trials, workers, LCM URL)."""
+    are its command-line options (scenario, envelope, trials, workers, LCM URL)."""
 
     def __init__(self, options=(), binary=None):
         self._argv = [find_service(binary)] + [str(o) for o in options]

@@ -15,6 +15,7 @@ Python's global ones, which the checkpoint saves too).
 import os
 import pickle
 import random
+import warnings
 
 import numpy as np
 
@@ -52,20 +53,25 @@ def write_json_atomically(path, doc):
     os.replace(tmp, path)
 
 
-def run_search(run_dir, make_optimizer, task=(), population=None, generations=None, name=None,
-               farm=(), binary=None, log=None):
+def run_search(run_dir, make_optimizer, evaluation=(), population=None, generations=None,
+               name=None, farm=(), binary=None, log=None, task=None):
     """Runs (or resumes, when RUN_DIR holds a run) a search to its last generation and returns
     the optimizer. `make_optimizer(evaluator)` makes a fresh one (a new run, or a run killed
-    before its first checkpoint); `task` are ahhs-evaluate's task options (scenario, shape,
-    trials, envelope, seed) and `farm` its farm options (workers, --lcm-url, arena kind), the only
-    ones a resume takes. `log(text)` gets one line per generation."""
+    before its first checkpoint); `evaluation` are ahhs-evaluate's scenario and evaluation options
+    (scenario, shape, trials, envelope, seed) and `farm` its farm options (workers, --lcm-url,
+    arena kind), the only ones a resume takes. `log(text)` gets one line per generation.
+    `task` is the old name of `evaluation`, deprecated."""
+    if task is not None:
+        warnings.warn("run_search(task=...) is deprecated and will go; use evaluation=",
+                      DeprecationWarning, stacklevel=2)
+        evaluation = task
     resume = os.path.exists(os.path.join(run_dir, "run.sqlite"))
     if resume:
         options = ["--resume", run_dir] + list(farm)
     else:
         if population is None or generations is None or not name:
             raise ValueError("a new run needs population, generations and name")
-        options = list(task) + ["--out", run_dir, "--population", population, "--generations",
+        options = list(evaluation) + ["--out", run_dir, "--population", population, "--generations",
                                 generations, "--optimizer", name] + list(farm)
     with Evaluator(options, binary) as ev:
         run = ev.hello["run"]

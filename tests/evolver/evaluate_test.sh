@@ -9,7 +9,7 @@ ahhs_netns "$0" "$@"
 ahhs_scratch 'ahhs-evaluate|ahhs-worker'
 url="udpm://239.255.42.61:7752?ttl=0&recv_buf_size=4194304"
 S="$bin/ahhs-evaluate"
-task="--scenario gait --docking fixed --duration 4"
+scenario="--scenario gait --docking fixed --duration 4"
 "$bin/ahhs-genome" random --variant ahhs2 --hormones 5 --rules 30 --sensors 4 --actuators 1 --seed 3 >$tmp/g.json
 python3 - $tmp/g.json >$tmp/requests <<'PY'
 import json, sys
@@ -27,7 +27,7 @@ ask(id="auto1", genomes=[g])
 ask(id="auto2", genomes=[g])
 PY
 echo "== 1. answers, errors, determinism"
-$S $task --trials 2 --envelope paper --workers 2 --lcm-url "$url" <$tmp/requests >$tmp/out 2>$tmp/err ||
+$S $scenario --trials 2 --envelope paper --workers 2 --lcm-url "$url" <$tmp/requests >$tmp/out 2>$tmp/err ||
   fail "service: $(cat $tmp/err)"
 pgrep -g "$pg" -f "$bin/ahhs-worker" >/dev/null && fail "local workers outlived the service"
 python3 - $tmp/out >$tmp/launches <<'PY' || fail "answers: $(cat $tmp/out)"
@@ -69,7 +69,7 @@ echo "== 2. every trial is what ahhs-launch gives"
 while read -r id seed fitness x y; do
   genome=$tmp/g.json
   [[ $id == vec ]] && genome=$tmp/vec.json
-  "$bin/ahhs-launch" $task --envelope paper --genome $genome --seed $seed --arena-kind fused >$tmp/launch.out
+  "$bin/ahhs-launch" $scenario --envelope paper --genome $genome --seed $seed --arena-kind fused >$tmp/launch.out
   got=$(sed -n 's/^fitness: //p' $tmp/launch.out)
   python3 -c "import sys; sys.exit(float('$got') != $fitness)" || fail "$id seed $seed: service $fitness, ahhs-launch $got"
   # The descriptor too (the service's from the farm's direct arenas, ahhs-launch's from its
@@ -82,7 +82,7 @@ echo "  $(wc -l <$tmp/launches) trials reproduced exactly, fitness and descripto
 echo "== 3. external workers only, the same answers"
 "$bin/ahhs-worker" --lcm-url "$url" --any-run --id ext >/dev/null 2>&1 &
 w=$!
-head -1 $tmp/requests | $S $task --trials 2 --envelope paper --workers 0 --lcm-url "$url" >$tmp/ext 2>$tmp/err ||
+head -1 $tmp/requests | $S $scenario --trials 2 --envelope paper --workers 0 --lcm-url "$url" >$tmp/ext 2>$tmp/err ||
   fail "external: $(cat $tmp/err)"
 kill $w; wait $w 2>/dev/null
 [[ "$(sed -n 2p $tmp/ext)" == "$(sed -n 2p $tmp/out)" ]] || fail "external workers answer otherwise: $(cat $tmp/ext)"

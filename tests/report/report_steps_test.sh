@@ -31,7 +31,7 @@ echo "== steps: the physics step judged by post-evaluated distributions"
 # file with a named physics.
 "$bin/ahhs-report" steps $tmp/gait --episodes 2 --jobs 2 -o $tmp/steps >$tmp/steps.out 2>&1 ||
   { cat $tmp/steps.out; fail "steps"; }
-# One row per step, the task's step (6.25 ms) and twice it judged against half of it.
+# One row per step, the damped docking's step (6.25 ms) and twice it judged against half of it.
 [[ $(grep -c "/gait," $tmp/steps/steps.csv) == 3 ]] || fail "steps.csv: $(cat $tmp/steps/steps.csv)"
 grep -q "^| genome | 3.125 ms: median (quartiles), over the wall | 6.25 ms: " $tmp/steps/summary.md &&
   grep -Eq "^- 6.25 ms: (passes|does not pass)$" $tmp/steps/summary.md &&

@@ -25,10 +25,10 @@ grep -q "reproduced exactly" $tmp/replay.out || fail "individual: $(cat $tmp/rep
 grep -q "600 trace (module, tick) pairs; 0 incomplete" $tmp/count.out || fail "trace in the log: $(cat $tmp/count.out)"
 "$bin/log_check" $tmp/gait.lcm --arena AHHS --modules 5 --ticks 60 --trace >/dev/null || fail "gait log"
 
-# --physics-step: the task's own step (damped docking: 6.25 ms) reproduces the stored fitness; another one is a check of
+# --physics-step: the docking's own step (damped docking: 6.25 ms) reproduces the stored fitness; another one is a check of
 # how much a behaviour depends on the discretisation, and says so.
 "$bin/ahhs-replay" $tmp/gait --physics-step 0.00625 >$tmp/out 2>&1 && grep -q "reproduced exactly" $tmp/out ||
-  fail "--physics-step 0.00625 (the task's): $(cat $tmp/out)"
+  fail "--physics-step 0.00625 (the docking's): $(cat $tmp/out)"
 "$bin/ahhs-replay" $tmp/gait --physics-step 0.0025 >$tmp/out 2>&1 || fail "--physics-step 0.0025: $(cat $tmp/out)"
 grep -Eq "reproduced exactly|in the changed physics \(--physics-step, --friction-scale, --envelope, --physics\) the replay differs by" $tmp/out || fail "$(cat $tmp/out)"
 "$bin/ahhs-replay" $tmp/gait --physics-step 1 >$tmp/out 2>&1; [[ $? == 2 ]] || fail "--physics-step 1 accepted"

@@ -16,9 +16,10 @@ assert sr.claims_of("no-such-study") is not None  # judged against the paper's c
 
 
 class FakeRun:
-    def __init__(self, task, best):
-        scenario, _, joints = task.partition("-")
-        self.task, self.config = task, {"scenario": scenario, "joints": joints or "damped"}
+    def __init__(self, scenario_label, best):
+        scenario, _, joints = scenario_label.partition("-")
+        self.scenario_label = scenario_label
+        self.config = {"scenario": scenario, "joints": joints or "damped"}
         self._best = best
 
     def best_overall(self):
@@ -26,8 +27,8 @@ class FakeRun:
 
 
 def config(name, bests, speed=None, **extra):
-    task = "pendulum" if name.startswith("pendulum") else "-".join(name.split("-")[:2])
-    c = sr.Config(name, len(bests), [FakeRun(task, b) for b in bests])
+    label = "pendulum" if name.startswith("pendulum") else "-".join(name.split("-")[:2])
+    c = sr.Config(name, len(bests), [FakeRun(label, b) for b in bests])
     c.speed = speed or [10] * len(bests)
     for k, v in extra.items():
         setattr(c, k, v)
@@ -38,7 +39,7 @@ def rows(configs, stat="best"):
     maxima = {}
     for c in configs:
         if c.runs:
-            maxima[c.task] = max(maxima.get(c.task, 0), float(np.max(c.best)))
+            maxima[c.scenario_label] = max(maxima.get(c.scenario_label, 0), float(np.max(c.best)))
     return {claim: (ours, verdict)
             for claim, _, ours, verdict in make_claims(configs, maxima, stat)}
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The gait's physics steps are fine enough for what evolution finds: an evolved gait's robust
 # fitness (the median over replays with the friction scaled by 0.975..1.025, ahhs-replay
-# --robustness) agrees at the task's step and at half of it. A single replay cannot tell: evolved
+# --robustness) agrees at the docking's step and at half of it. A single replay cannot tell: evolved
 # bests are knife-edges of deterministic chaos, and 1 % more friction changes them as much as a
 # finer step (docs/findings.md, "Physics step and deterministic chaos"). The physics of 2026-12-04
 # (the chain solver) and of 2026-12-01 (dWorldStep) agree the same way.
@@ -33,13 +33,13 @@ grep -q "reproduced exactly" $tmp/knife.out &&
 
 # The rest repeats that replay path with other steps and physics, for its numbers.
 if ! ci_tier_only "the step and physics comparisons (six more robust medians)"; then
-echo "== fixed docking: 12.5 ms (the task's) agrees with 6.25 ms"
+echo "== fixed docking: 12.5 ms (the docking's) agrees with 6.25 ms"
 f1=$(median fixed-12 fixed $fixed 0.0125) || exit 1
 f2=$(median fixed-6 fixed $fixed 0.00625) || exit 1
 echo "robust medians: 12.5 ms $f1, 6.25 ms $f2"
 close $f1 $f2 0.1 || fail "fixed docking: robust median $f1 at 12.5 ms, $f2 at 6.25 ms"
 
-echo "== damped docking: 6.25 ms (the task's) agrees with 3.125 ms; 12.5 ms did not"
+echo "== damped docking: 6.25 ms (the docking's) agrees with 3.125 ms; 12.5 ms did not"
 d1=$(median damped-12 damped $damped 0.0125) || exit 1
 d2=$(median damped-6 damped $damped 0.00625) || exit 1
 d3=$(median damped-3 damped $damped 0.003125) || exit 1

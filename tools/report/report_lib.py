@@ -103,15 +103,16 @@ class Run:
         return argv + (["--physics", self.physics] if self.physics else [])
 
     @property
-    def task(self):
+    def scenario_label(self):
+        """The scenario with the gait's docking: pendulum, gait-damped or gait-fixed. Runs of
+        different ones never share a fitness axis."""
         c = self.config
         return c["scenario"] + ("-" + c["joints"] if c["scenario"] == "gait" else "")
 
     @property
     def label(self):
         c = self.config
-        task = c["scenario"] + ("-" + c["joints"] if c["scenario"] == "gait" else "")
-        return f"{task} {c['variant'].upper()}-{c['rules']}"
+        return f"{self.scenario_label} {c['variant'].upper()}-{c['rules']}"
 
     def best_overall(self):
         return float(np.max(self.best))
@@ -170,18 +171,19 @@ def save(fig, out_dir, name, written):
     plt.close(fig)
 
 
-def tasks_of(groups):
-    """Configuration labels grouped by task, in order: tasks never share a fitness axis."""
-    tasks = OrderedDict()
+def scenarios_of(groups):
+    """Configuration labels grouped by scenario label, in order: they never share a fitness axis."""
+    scenarios = OrderedDict()
     for label, runs in groups.items():
-        tasks.setdefault(runs[0].task, []).append(label)
-    return tasks
+        scenarios.setdefault(runs[0].scenario_label, []).append(label)
+    return scenarios
 
 
 def fitness_figure(groups, out_dir, written):
-    tasks = tasks_of(groups)
-    fig, axes = plt.subplots(len(tasks), 1, figsize=(8, 3.6 * len(tasks) + 0.4), squeeze=False)
-    for ax, (task, labels) in zip(axes[:, 0], tasks.items()):
+    scenarios = scenarios_of(groups)
+    fig, axes = plt.subplots(len(scenarios), 1, figsize=(8, 3.6 * len(scenarios) + 0.4),
+                             squeeze=False)
+    for ax, (scenario, labels) in zip(axes[:, 0], scenarios.items()):
         for label in labels:
             runs = groups[label]
             if len(runs) == 1:
@@ -196,9 +198,9 @@ def fitness_figure(groups, out_dir, written):
                 line, = ax.plot(g, med, label=f"{label}: median best (n={len(runs)})")
                 ax.fill_between(g, q1, q3, color=line.get_color(), alpha=0.25)
         ax.set_xlabel("generation")
-        ax.set_ylabel(f"fitness ({task})")
+        ax.set_ylabel(f"fitness ({scenario})")
         ax.xaxis.set_major_locator(MaxNLocator(integer=True))
-        ax.set_title(f"{task}: fitness per generation" + (" (band: quartiles)" if any(
+        ax.set_title(f"{scenario}: fitness per generation" + (" (band: quartiles)" if any(
             len(groups[l]) > 1 for l in labels) else ""), fontsize=10)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
@@ -207,13 +209,15 @@ def fitness_figure(groups, out_dir, written):
 
 
 def box_figure(groups, values, ylabel, title, name, out_dir, written, integer=False):
-    """One panel per task. A configuration with fewer than 2 runs is drawn as its points, without
-    a box, and takes part in no test; tests compare configurations of one task only."""
-    tasks = tasks_of(groups)
-    width = max(4, 2.2 * max(len(l) for l in tasks.values()))
-    fig, axes = plt.subplots(1, len(tasks), figsize=(width * len(tasks), 4.8), squeeze=False)
+    """One panel per scenario label. A configuration with fewer than 2 runs is drawn as its
+    points, without a box, and takes part in no test; tests compare configurations of one scenario
+    label only."""
+    scenarios = scenarios_of(groups)
+    width = max(4, 2.2 * max(len(l) for l in scenarios.values()))
+    fig, axes = plt.subplots(1, len(scenarios), figsize=(width * len(scenarios), 4.8),
+                             squeeze=False)
     tests = []
-    for ax, (task, labels) in zip(axes[0, :], tasks.items()):
+    for ax, (scenario, labels) in zip(axes[0, :], scenarios.items()):
         data = [values[l] for l in labels]
         boxed = [i for i, d in enumerate(data) if len(d) >= 2]
         if boxed:
@@ -225,7 +229,7 @@ def box_figure(groups, values, ylabel, title, name, out_dir, written, integer=Fa
         ax.set_xticklabels([f"{l}\nn={len(d)}" for l, d in zip(labels, data)], fontsize=8)
         ax.set_xlim(0.5, len(labels) + 0.5)
         ax.set_ylabel(ylabel)
-        ax.set_title(task, fontsize=10)
+        ax.set_title(scenario, fontsize=10)
         ax.grid(alpha=0.3, axis="y")
         if integer:
             ax.yaxis.set_major_locator(MaxNLocator(integer=True))
@@ -255,12 +259,12 @@ SENSOR_NAMES = {
 }
 
 
-def sensor_name(task, j):
-    names = SENSOR_NAMES["pendulum" if task == "pendulum" else "gait"]
+def sensor_name(scenario, j):
+    names = SENSOR_NAMES["pendulum" if scenario == "pendulum" else "gait"]
     return f"S{j} {names[j]}" if j < len(names) else f"S{j}"
 
 
-def replay_figures(trace_csv, rules_csv, body_csv, task, out_dir, written):
+def replay_figures(trace_csv, rules_csv, body_csv, scenario, out_dir, written):
     data = np.genfromtxt(trace_csv, delimiter=",", names=True)
     names = data.dtype.names
     modules = sorted(set(int(m) for m in data["module"]))
@@ -268,7 +272,7 @@ def replay_figures(trace_csv, rules_csv, body_csv, task, out_dir, written):
     sensors = [n for n in names if n[0] == "s" and n[1:].isdigit()]
     actuators = [n for n in names if n[0] == "a" and n[1:].isdigit()]
     used = [h for h in hormones if np.max(data[h]) > 1e-3]
-    pendulum = task == "pendulum"
+    pendulum = scenario == "pendulum"
     # Hormone concentrations through the organism: one panel per hormone, a line per module.
     shown = used or hormones[:1]
     fig, axes = plt.subplots(len(shown), 1, figsize=(8, 1.9 * len(shown) + 0.6), sharex=True,
@@ -346,7 +350,7 @@ def replay_figures(trace_csv, rules_csv, body_csv, task, out_dir, written):
         for j, s in enumerate(sensors):
             if np.max(data[s][rows]) > 0:
                 ax.plot(data["time"][rows], data[s][rows], lw=0.7, color=colours(j % 10),
-                        label=sensor_name(task, j))
+                        label=sensor_name(scenario, j))
         ax.set_ylabel(f"module {m}")
         ax.set_ylim(-0.02, 1.02)
         ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0))
@@ -421,7 +425,7 @@ def rule_edges(genome, parts, threshold=0.0):
             yield r, part, src, dst, rule["lambda"] >= 0, active
 
 
-def controller_graph(genome, parts, out_dir, written, name="controller", task="gait"):
+def controller_graph(genome, parts, out_dir, written, name="controller", scenario="gait"):
     """Sensors -> hormones -> actuators: one edge per rule part that triggered in the replay,
     its width by the share of ticks it triggered (the most active module); parts that never
     triggered are not drawn."""
@@ -440,7 +444,7 @@ def controller_graph(genome, parts, out_dir, written, name="controller", task="g
     pick = lambda p: sorted((n for n in used if n[0] == p), key=lambda n: int(n[1:]))
     if pick("S"):
         lines.append("  { rank=same; " + " ".join(
-            f'{n} [shape=box, color=blue, label="{sensor_name(task, int(n[1:]))}"];'
+            f'{n} [shape=box, color=blue, label="{sensor_name(scenario, int(n[1:]))}"];'
             for n in pick("S")) + " }")
     if pick("H"):
         lines.append("  " + " ".join(f"{n} [shape=ellipse, color=darkgreen];" for n in pick("H")))

@@ -25,10 +25,10 @@ def report_runs(args):
     for r in runs:
         groups.setdefault(r.label, []).append(r)
     fitness_figure(groups, args.out, written)
-    # 75 % of the maximum over all runs of the same task.
+    # 75 % of the maximum over all runs of the same scenario label.
     overall = {}
     for r in runs:
-        overall[r.task] = max(overall.get(r.task, -math.inf), r.best_overall())
+        overall[r.scenario_label] = max(overall.get(r.scenario_label, -math.inf), r.best_overall())
     level = {t: 0.75 * m for t, m in overall.items()}
     best = {l: [r.best_overall() for r in rs] for l, rs in groups.items()}
     speed = {}
@@ -36,7 +36,7 @@ def report_runs(args):
     for l, rs in groups.items():
         speed[l] = []
         for r in rs:
-            g = r.first_generation_reaching(level[r.task])
+            g = r.first_generation_reaching(level[r.scenario_label])
             if g is None:
                 g, censored = int(r.generation[-1]) + 1, censored + 1
             speed[l].append(g)
@@ -80,10 +80,11 @@ def report_runs(args):
                                                          "--log", log,
                                    "--body-csv", body])
         written += [trace, rules, log, body]
-        info = replay_figures(trace, rules, body, first.task, args.out, written)
+        info = replay_figures(trace, rules, body, first.scenario_label, args.out, written)
         with open(os.path.join(first.path, "best.json")) as f:
             genome = json.load(f)
-        edges = controller_graph(genome, info["parts"], args.out, written, task=first.task)
+        edges = controller_graph(genome, info["parts"], args.out, written,
+                                 scenario=first.scenario_label)
         check = [l for l in out.splitlines() if l.startswith("stored fitness")]
         strip = filmstrip(bin_dir, log, os.path.join(args.out, "best-filmstrip.png"), written)
         md += ["", f"## The best controller of `{first.path}`", "",
@@ -179,10 +180,11 @@ def report_neighbourhood(args):
     save(fig, args.out, "neighbourhood", written)
     written += [rules, body]
     ticks = max(1, len(np.atleast_1d(np.genfromtxt(body, delimiter=",", names=True))))
-    task = "pendulum" if args.scenario == "pendulum" and not os.path.isdir(args.genome) else (
-        Run(args.genome).task if os.path.isdir(args.genome) else f"gait-{args.docking}")
+    scenario = "pendulum" if args.scenario == "pendulum" and not os.path.isdir(args.genome) else (
+        Run(args.genome).scenario_label if os.path.isdir(args.genome) else f"gait-{args.docking}")
     with open(genome_path) as f:
-        controller_graph(json.load(f), rule_parts(rules, ticks), args.out, written, task=task)
+        controller_graph(json.load(f), rule_parts(rules, ticks), args.out, written,
+                         scenario=scenario)
     keep = np.mean(mutants >= 0.9 * original) if original > 0 else float("nan")
     md = ["# Mutation neighbourhood", "", f"Genome: `{genome_path}`; {len(mutants)} single mutants "
           f"(mutation seed {args.mutant_seed}), each evaluated with the same episode seed.", "",

@@ -2,7 +2,7 @@
 
 A chaotic system has no converged trajectory, so the step is judged by whether the *post-evaluated
 distribution* of each genome converges (docs/scenarios.md, "Physics step"): every
-genome is replayed on the same N held-out episodes (ahhs-replay --post-eval N) at the task's step
+genome is replayed on the same N held-out episodes (ahhs-replay --post-eval N) at the scenario's step
 h, at h / 2 and at 2 h. A step passes when, for every genome, its median and its over-the-wall
 share agree with those at h / 2 within 10 % and 0.15. The episodes are the same at every step,
 so the table also gives a paired bootstrap interval of each difference of medians: how much of a
@@ -20,8 +20,8 @@ import tempfile
 
 import report_lib as report
 
-# The tasks' steps (sim/core/constants.h, GaitConstants::physics_step_*).
-TASK_STEP = {"damped": 0.00625, "fixed": 0.0125}
+# The scenarios' steps (sim/core/constants.h, GaitConstants::physics_step_*).
+DOCKING_STEP = {"damped": 0.00625, "fixed": 0.0125}
 MEDIAN_TOLERANCE = 0.10  # relative, against h / 2
 SHARE_TOLERANCE = 0.15   # absolute, against h / 2
 BOOTSTRAP_RESAMPLES = 2000
@@ -78,7 +78,7 @@ def agrees(row, half):
 def report_steps(args):
     report.prepare_out(args.out, args.overwrite)
     bin_dir = report.find_bin(args)
-    h = args.step or TASK_STEP[args.docking]
+    h = args.step or DOCKING_STEP[args.docking]
     steps = [h / 2, h, 2 * h]
     rows = []
     with tempfile.TemporaryDirectory(prefix="ahhs-steps-") as tmp:

@@ -2,10 +2,11 @@
 
 Reads the complete runs of a study directory or of a study export (each config's
 seed-<k>/summary.json), in the plan's order (study.toml), and writes into OUT_DIR:
-  <task>/          ahhs-report of every complete run of the task (fitness, box plots, tests,
+  <scenario>/      ahhs-report of every complete run of the scenario (pendulum, gait-damped,
+                   gait-fixed: the gait's docking is part of it; fitness, box plots, tests,
                    the best controller of the first run)
-  <task>/box_robust.png   the robust fitness of each run's best, per configuration (rank-sum)
-  <task>/neighbourhood-<config>/   35 single mutants of the configuration's best genome
+  <scenario>/box_robust.png   the robust fitness of each run's best, per configuration (rank-sum)
+  <scenario>/neighbourhood-<config>/   35 single mutants of the configuration's best genome
   results.md       the paper's claims, one per row, with our figures beside them
   results.json     the numbers behind results.md
 Every run's best genome is replayed once (rule activity, hormones in use, and whether this build
@@ -41,14 +42,15 @@ ROBUSTNESS = 8
 class Config:
     def __init__(self, name, planned, runs):
         self.name, self.planned, self.runs = name, planned, runs
-        self.task = runs[0].task if runs else None
+        self.scenario_label = runs[0].scenario_label if runs else None
         self.best = np.array([r.best_overall() for r in runs])
         self.robust = None  # per run: robust fitness of its best genome (None: a run has none)
         self.robust_source = ""  # what the robust fitness is the median of
         self.spread = None  # per run: interquartile range of its best genome's robust episodes
         self.spread_source = ""
         self.controllers = []  # per run: rule and hormone use of its best genome
-        self.speed = []  # per run: the generation reaching 75 % of the task's maximum, or its length
+        # per run: the generation reaching 75 % of the scenario's maximum, or its length
+        self.speed = []
         self.reached = []  # per run: whether it reached that level (else censored at its length)
         self.robustness = None  # of the configuration's best genome
         self.robustness_runs = []  # per run: ahhs-replay --robustness of its best genome
@@ -164,8 +166,8 @@ def robust_fitness(config):
 
 
 NEIGHBOURHOOD_ORIGINALS = 3
-# The robust fitness of the originals the paper's neighbourhoods start from, per task: 0.84
-# (AHHS1-80) and 0.81 (AHHS2-50), fixed docking. Elsewhere the originals are the best.
+# The robust fitness of the originals the paper's neighbourhoods start from, per scenario label:
+# 0.84 (AHHS1-80) and 0.81 (AHHS2-50), fixed docking. Elsewhere the originals are the best.
 NEIGHBOURHOOD_REFERENCE = {"gait-fixed": 0.8}
 
 
@@ -174,7 +176,7 @@ def neighbourhood_originals(config):
     whose robust fitness is nearest the paper's originals (a good controller, not the setting's
     highest knife-edge), else the highest."""
     values = config.robust if config.robust is not None else config.best
-    reference = NEIGHBOURHOOD_REFERENCE.get(config.task)
+    reference = NEIGHBOURHOOD_REFERENCE.get(config.scenario_label)
     key = ((lambda i: (abs(values[i] - reference), i)) if reference is not None else
            (lambda i: (-values[i], i)))
     return [config.runs[i] for i in sorted(range(len(config.runs)), key=key)
@@ -246,17 +248,17 @@ def report_study(args):
         raise ReportError(f"{args.study}: no complete run yet")
     prepare_out(args.out, args.overwrite, allow_dirs=True)
     bin_dir = find_bin(args)
-    tasks = OrderedDict()
+    scenarios = OrderedDict()
     for c in done:
-        tasks.setdefault(c.task, []).append(c)
-    maxima = {t: float(max(np.max(c.best) for c in cs)) for t, cs in tasks.items()}
+        scenarios.setdefault(c.scenario_label, []).append(c)
+    maxima = {t: float(max(np.max(c.best) for c in cs)) for t, cs in scenarios.items()}
     for c in done:  # the paper's evolution speed; a run that never gets there is censored
-        speed = [r.first_generation_reaching(0.75 * maxima[c.task]) for r in c.runs]
+        speed = [r.first_generation_reaching(0.75 * maxima[c.scenario_label]) for r in c.runs]
         c.reached = [g is not None for g in speed]
         c.speed = [int(r.generation[-1]) + 1 if g is None else g for r, g in zip(c.runs, speed)]
-    for task, cs in tasks.items():
+    for scenario, cs in scenarios.items():
         report_runs(argparse.Namespace(runs=[r for c in cs for r in c.runs],
-                                       out=os.path.join(args.out, task), overwrite=True,
+                                       out=os.path.join(args.out, scenario), overwrite=True,
                                        no_replay=args.no_replay, bin=bin_dir))
     with tempfile.TemporaryDirectory() as scratch:
         for c in done:
@@ -266,18 +268,18 @@ def report_study(args):
             robust_fitness(c)
             if not args.no_replay:
                 c.neighbourhood = neighbourhood_of(
-                    bin_dir, c, os.path.join(args.out, c.task, f"neighbourhood-{c.name}"))
-    for task, cs in tasks.items():
+                    bin_dir, c, os.path.join(args.out, c.scenario_label, f"neighbourhood-{c.name}"))
+    for scenario, cs in scenarios.items():
         robust = [c for c in cs if c.robust is not None]
         if robust:
             box_figure({c.name: c.runs for c in robust}, {c.name: list(c.robust) for c in robust},
                        "robust fitness of the run's best", "Robust fitness of each run's best "
                        f"genome (median of {robust[0].robust_source}), Wilcoxon rank-sum",
-                       "box_robust", os.path.join(args.out, task), [])
+                       "box_robust", os.path.join(args.out, scenario), [])
     make_claims = claims_of(name)
     claims = merge_claims(make_claims(configs, maxima, "best"),
                           make_claims(configs, maxima, "robust"))
-    write_results(args, name, configs, tasks, maxima, claims)
+    write_results(args, name, configs, scenarios, maxima, claims)
 
 
 
@@ -316,7 +318,7 @@ def robust_sources(configs):
     return "the median of " + "; ".join(f"{s} ({', '.join(n)})" for s, n in sources.items())
 
 
-def write_results(args, name, configs, tasks, maxima, claims):
+def write_results(args, name, configs, scenarios, maxima, claims):
     complete = sum(len(c.runs) for c in configs)
     planned = sum(c.planned for c in configs)
     replayed, differ = reproduction(configs)
@@ -359,7 +361,7 @@ def write_results(args, name, configs, tasks, maxima, claims):
             md.append(f"| {c.name} | 0 of {c.planned} | not run yet | | | | | | | |")
             continue
         q1, med, q3 = np.percentile(c.best, [25, 50, 75])
-        within = float(np.mean(c.best >= 0.8 * maxima[c.task]))
+        within = float(np.mean(c.best >= 0.8 * maxima[c.scenario_label]))
         quiet = np.median([(u["never"] + u["seldom"]) / u["rules"] for u in c.controllers])
         hormones = np.median([u["hormones_used"] for u in c.controllers])
         robust = "-" if c.robust is None else "{1:.3f} ({0:.3f} / {2:.3f})".format(
@@ -370,7 +372,8 @@ def write_results(args, name, configs, tasks, maxima, claims):
                   f"{reaching(c)} | {quiet:.0%} | "
                   f"{hormones:g} of {c.controllers[0]['hormones']} |")
         results["configs"][c.name] = {
-            "runs": len(c.runs), "planned": c.planned, "task": c.task,
+            # (key "task": the name results.json has always had; docs/reference.md, "words")
+            "runs": len(c.runs), "planned": c.planned, "task": c.scenario_label,
             "best": [float(v) for v in c.best], "median": float(med),
             "within_80_percent": within, "speed": c.speed, "reached": c.reached,
             "robustness": c.robustness, "robust_source": c.robust_source,
@@ -379,13 +382,13 @@ def write_results(args, name, configs, tasks, maxima, claims):
             "robustness_runs": c.robustness_runs,
             "neighbourhood": c.neighbourhood, "controllers": c.controllers}
     md += ["", "## Figures", ""]
-    for task in tasks:
-        md += [f"- {task}: `{task}/fitness.png`, `{task}/box_best.png`, `{task}/box_robust.png`, "
-               f"`{task}/box_speed.png`, `{task}/summary.md`"]
+    for scenario in scenarios:
+        md += [f"- {scenario}: `{scenario}/fitness.png`, `{scenario}/box_best.png`, "
+               f"`{scenario}/box_robust.png`, `{scenario}/box_speed.png`, `{scenario}/summary.md`"]
         md += [f"  - mutation neighbourhood of {c.name}'s "
                f"{os.path.basename(os.path.normpath(o['run']))}: "
-               f"`{task}/neighbourhood-{c.name}/{os.path.basename(os.path.normpath(o['run']))}"
-               "/neighbourhood.png`" for c in tasks[task] if c.neighbourhood
+               f"`{scenario}/neighbourhood-{c.name}/{os.path.basename(os.path.normpath(o['run']))}"
+               "/neighbourhood.png`" for c in scenarios[scenario] if c.neighbourhood
                for o in c.neighbourhood["originals"]]
     with open(os.path.join(args.out, "results.md"), "w") as f:
         f.write("\n".join(md) + "\n")

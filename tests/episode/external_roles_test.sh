@@ -118,7 +118,10 @@ physical() {  # NAME: firmware for modules 0-2 and a tracker on arena NAME, for 
 }
 rt=("$bin/ahhs-launch" --scenario gait --modules 3 --genome $tmp/g.json --seed 5 --duration 2 --realtime --lcm-url "$url" --external sim)
 physical PHYS
-(sleep 1; echo; sleep 5) | "$bin/ahhs-sim" --physics none --arena PHYS --lcm-url "$url" --episodes 1 >$tmp/server.out 2>&1 &
+# The operator presses Enter once the server has asked (up to 10 s): an Enter before the episode's
+# RESET confirms ahead and is not asked for (seen under load in the sanitizer tier).
+(for _ in $(seq 200); do grep -qs "put the organism at its start" $tmp/server.out && break; sleep 0.05; done
+ echo; sleep 5) | "$bin/ahhs-sim" --physics none --arena PHYS --lcm-url "$url" --episodes 1 >$tmp/server.out 2>&1 &
 "${rt[@]}" --external-timeout 10 --arena PHYS >$tmp/phys.out 2>&1 || { cat $tmp/phys.out $tmp/server.out; fail "physical organism episode"; }
 wait "${peers[@]}"
 f=$(fit $tmp/phys.out)

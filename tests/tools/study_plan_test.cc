@@ -33,23 +33,23 @@ struct PlanDir {
 
 TEST_CASE("a study runs seed 1 of every configuration first, then seed 2, ...") {
   PlanDir d;
-  const auto plan = tools::LoadStudyPlan(
+  const auto plan = study::LoadStudyPlan(
       d.Plan("name = \"s\"\n[[config]]\nname = \"a\"\npreset = \"gait.toml\"\nseeds = 2\n"
              "[[config]]\nname = \"b\"\npreset = \"gait.toml\"\nseeds = 3\n"));
   std::vector<std::string> names;
-  for (const auto& r : tools::StudyRuns(plan)) names.push_back(r.Name());
+  for (const auto& r : study::StudyRuns(plan)) names.push_back(r.Name());
   CHECK(names ==
         std::vector<std::string>{"a/seed-1", "b/seed-1", "a/seed-2", "b/seed-2", "b/seed-3"});
 }
 
 TEST_CASE("a configuration's file is its preset with the defaults and its own keys on top") {
   PlanDir d;
-  const auto plan = tools::LoadStudyPlan(
+  const auto plan = study::LoadStudyPlan(
       d.Plan("name = \"s\"\n[defaults]\ngenerations = 7\ntrials = 3\n"
              "[[config]]\nname = \"robust\"\npreset = \"gait.toml\"\nseeds = 1\n"
              "[config.set]\nrules = 80\nenvelope = \"paper\"\n\"envelope.friction\" = 0.1\n"));
   REQUIRE(plan.configs.size() == 1);
-  const toml::table resolved = toml::parse(tools::ResolvedConfigToml(plan.configs[0]));
+  const toml::table resolved = toml::parse(study::ResolvedConfigToml(plan.configs[0]));
   CHECK(resolved["scenario"].value<std::string>() == "gait");
   CHECK(resolved["rules"].value<int>() == 80);
   CHECK(resolved["generations"].value<int>() == 7);
@@ -63,8 +63,8 @@ TEST_CASE("a bad plan is refused with the line that is wrong") {
   PlanDir d;
   const auto refused = [&](const std::string& text) {
     try {
-      tools::LoadStudyPlan(d.Plan(text));
-    } catch (const tools::StudyPlanError& e) {
+      study::LoadStudyPlan(d.Plan(text));
+    } catch (const study::StudyPlanError& e) {
       return std::string(e.what());
     }
     return std::string("accepted");
@@ -84,16 +84,16 @@ TEST_CASE("the committed study plans load, and their configurations resolve to f
   REQUIRE(src != nullptr);
   for (const char* name : {"paper-2010.toml", "paper-2010-robust.toml"}) {
     INFO(name);
-    const auto plan = tools::LoadStudyPlan(std::string(src) + "/studies/" + name);
+    const auto plan = study::LoadStudyPlan(std::string(src) + "/studies/" + name);
     CHECK_FALSE(plan.configs.empty());
     for (const auto& config : plan.configs) {
-      const toml::table resolved = toml::parse(tools::ResolvedConfigToml(config));
+      const toml::table resolved = toml::parse(study::ResolvedConfigToml(config));
       CHECK(resolved["generations"].value<int>() == 200);
     }
   }
-  const auto robust = tools::LoadStudyPlan(std::string(src) + "/studies/paper-2010-robust.toml");
+  const auto robust = study::LoadStudyPlan(std::string(src) + "/studies/paper-2010-robust.toml");
   for (const auto& config : robust.configs) {
-    const toml::table resolved = toml::parse(tools::ResolvedConfigToml(config));
+    const toml::table resolved = toml::parse(study::ResolvedConfigToml(config));
     CHECK(resolved["envelope"].value<std::string>() == "paper");
     CHECK(resolved["post-eval"].value<int>() == 50);
     const bool damped = config.name.find("damped") != std::string::npos;

@@ -33,7 +33,7 @@
 namespace cli = ahhs::base::cli;
 
 namespace fs = std::filesystem;
-namespace at = ahhs::tools;
+namespace st = ahhs::study;
 using nlohmann::json;
 
 using ahhs::base::kExitFailure;
@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
   cli::App app{"ahhs-study: many ahhs-evolve runs from a study plan, resumable at any moment"};
   app.require_subcommand(1);
   std::string plan_file, out_dir, resume_dir, study_dir, export_dir;
-  at::RunOptions options;
+  st::RunOptions options;
   cli::App* run = app.add_subcommand("run", "run (or resume) a study on this machine");
   run->add_option("plan", plan_file, "study plan (TOML, e.g. studies/paper-2010.toml)");
   auto* out = run->add_option("--out", out_dir, "new study directory");
@@ -88,9 +88,9 @@ int main(int argc, char** argv) {
   compact->add_option("study", study_dir, "study directory")->required();
   cli::App* submit = app.add_subcommand(
       "submit", "submit a study's unfinished runs to a Slurm cluster as one job array");
-  at::SlurmOptions slurm;
+  st::SlurmOptions slurm;
   bool use_slurm = false;
-  at::RunOptions submit_options;
+  st::RunOptions submit_options;
   submit->add_option("plan", plan_file, "study plan (TOML)");
   auto* submit_out =
       submit->add_option("--out", out_dir, "new study directory (shared filesystem)");
@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
       "task", "run one run of a submission to its end (what a Slurm array task does)");
   std::string submission;
   int task_index = 0;
-  at::RunOptions task_options;
+  st::RunOptions task_options;
   task_options.workers_per_run = 1;
   task->add_option("study", study_dir, "study directory")->required();
   task->add_option("--submission", submission, "submission directory (STUDY/slurm/submit-N)")
@@ -153,16 +153,16 @@ int main(int argc, char** argv) {
       std::signal(SIGTERM, OnSignal);
     }
     if (*run)
-      return at::RunStudy(at::OpenOrCreateStudy(plan_file, out_dir, resume_dir), options,
+      return st::RunStudy(st::OpenOrCreateStudy(plan_file, out_dir, resume_dir), options,
                           g_signals);
-    if (*status) return at::Status(at::StudyDir::Open(study_dir));
+    if (*status) return st::Status(st::StudyDir::Open(study_dir));
     if (*submit) {
-      const at::StudyDir study = at::OpenOrCreateStudy(plan_file, out_dir, resume_dir);
+      const st::StudyDir study = st::OpenOrCreateStudy(plan_file, out_dir, resume_dir);
       if (!submit_options.from_export.empty()) study.Import(submit_options.from_export, nullptr);
-      return at::Submit(study, submit_options, slurm);
+      return st::Submit(study, submit_options, slurm);
     }
     if (*task)
-      return at::RunTask(at::StudyDir::Open(study_dir), submission, task_index, task_options,
+      return st::RunTask(st::StudyDir::Open(study_dir), submission, task_index, task_options,
                          g_signals);
     if (*report) {
       // The statistics and figures are ahhs-report's (Python): hand over to it.
@@ -176,16 +176,16 @@ int main(int argc, char** argv) {
       ::execv(tool.c_str(), argv_out.data());
       throw std::runtime_error("cannot run " + tool + ": " + std::strerror(errno));
     }
-    if (*compact) return at::Compact(at::StudyDir::Open(study_dir));
+    if (*compact) return st::Compact(st::StudyDir::Open(study_dir));
     if (*exp) {
-      const int n = at::StudyDir::Open(study_dir).Export(export_dir);
+      const int n = st::StudyDir::Open(study_dir).Export(export_dir);
       std::printf("exported %d complete runs to %s\n", n, export_dir.c_str());
       return 0;
     }
   } catch (const ahhs::base::UsageError& e) {
     std::cerr << "ahhs-study: " << e.what() << '\n';
     return kExitUsage;
-  } catch (const at::StudyPlanError& e) {
+  } catch (const st::StudyPlanError& e) {
     std::cerr << "ahhs-study: " << e.what() << '\n';
     return kExitUsage;
   } catch (const std::exception& e) {

@@ -8,7 +8,7 @@
 #include "evolver/store/run_store.h"
 #include "sim/core/scenario.h"
 
-namespace ahhs::tools {
+namespace ahhs::study {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -320,4 +320,4 @@ std::vector<std::string> StudyDir::Import(const std::string& src,
   return taken;
 }
 
-}  // namespace ahhs::tools
+}  // namespace ahhs::study

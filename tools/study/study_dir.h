@@ -20,7 +20,7 @@
 
 #include "tools/study/study_plan.h"
 
-namespace ahhs::tools {
+namespace ahhs::study {
 
 enum class RunStateKind { kPending, kStopped, kRunning, kFailed, kComplete };
 const char* RunStateName(RunStateKind kind);
@@ -82,4 +82,4 @@ class StudyDir {
   std::string plan_text_;
 };
 
-}  // namespace ahhs::tools
+}  // namespace ahhs::study

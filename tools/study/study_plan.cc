@@ -8,7 +8,7 @@
 #include <set>
 #include <sstream>
 
-namespace ahhs::tools {
+namespace ahhs::study {
 
 namespace fs = std::filesystem;
 
@@ -210,4 +210,4 @@ std::string ResolvedConfigToml(const StudyConfig& config) {
   return out.str();
 }
 
-}  // namespace ahhs::tools
+}  // namespace ahhs::study

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace ahhs::tools {
+namespace ahhs::study {
 
 // Every problem with a plan; what() is one line for the user ("FILE:LINE: ...").
 class StudyPlanError : public std::runtime_error {
@@ -64,4 +64,4 @@ std::vector<StudyRun> StudyRuns(const StudyPlan& plan);
 // Throws StudyPlanError when the preset is not a flat TOML table.
 std::string ResolvedConfigToml(const StudyConfig& config);
 
-}  // namespace ahhs::tools
+}  // namespace ahhs::study

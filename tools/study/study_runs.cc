@@ -22,7 +22,7 @@
 
 namespace cli = ahhs::base::cli;
 
-namespace ahhs::tools {
+namespace ahhs::study {
 
 namespace fs = std::filesystem;
 using base::kExitFailure;
@@ -475,4 +475,4 @@ int Submit(const StudyDir& study, const RunOptions& options, const SlurmOptions&
   return 0;
 }
 
-}  // namespace ahhs::tools
+}  // namespace ahhs::study

@@ -13,7 +13,7 @@
 #include "base/file_lock.h"
 #include "tools/study/study_dir.h"
 
-namespace ahhs::tools {
+namespace ahhs::study {
 
 // How a study's runs are started.
 struct RunOptions {
@@ -80,4 +80,4 @@ int RunTask(const StudyDir& study, const std::string& submission, int index, Run
 // Submits the study's unfinished runs (those of `options.only`, if given) as one Slurm job array.
 int Submit(const StudyDir& study, const RunOptions& options, const SlurmOptions& slurm);
 
-}  // namespace ahhs::tools
+}  // namespace ahhs::study

@@ -32,15 +32,18 @@ def make_claims(configs, maxima, stat="best"):
     return c.rows
 
 
-def pendulum(c):
-    a, b = "pendulum-ahhs2-15", "pendulum-ahhs1-60"
-    claim = "Pendulum: AHHS2-15 is better than AHHS1-60"
+def pendulum(c, suffix="", setting=""):
+    """The pendulum's claims on pendulum-ahhs2-15<suffix> against pendulum-ahhs1-60<suffix>;
+    `setting` names a task setting other than the paper's in the claims' text."""
+    a, b = "pendulum-ahhs2-15" + suffix, "pendulum-ahhs1-60" + suffix
+    where = f"Pendulum, {setting}" if setting else "Pendulum"
+    claim = f"{where}: AHHS2-15 is better than AHHS1-60"
     paper = "yes, Wilcoxon p < 0.05 (n = 10 AHHS2, 8 AHHS1)"
     if not c.missing(claim, paper, a, b):
         verdict, p = c.higher(a, b, "AHHS1-60")
         c.add(claim, paper, f"medians {c.median(a):.3f} (AHHS2-15) vs {c.median(b):.3f} "
               f"(AHHS1-60), p = {fmt(p)}", verdict, (a, b))
-    claim = "Pendulum: evolution speed (runs reaching 75 % of the maximum, and when)"
+    claim = f"{where}: evolution speed (runs reaching 75 % of the maximum, and when)"
     paper = "no significant difference"
     if not c.not_fitness(claim, paper) and not c.missing(claim, paper, a, b):
         _, _, p = c.speed_logrank(a, b)

@@ -19,6 +19,7 @@ class FakeRun:
     def __init__(self, scenario_label, best):
         scenario, _, joints = scenario_label.partition("-")
         self.scenario_label = scenario_label
+        self.setting_label = scenario_label
         self.config = {"scenario": scenario, "joints": joints or "damped"}
         self._best = best
 
@@ -199,4 +200,43 @@ text, differ = replayed(True, None)
 assert text.startswith("1 of 2 runs' best genomes replay") and not differ, text
 text, differ = replayed(True, False, None)
 assert text.startswith("**1 of 3 runs' best genomes do not replay") and differ == ["seed-2"], text
+
+# The pendulum's choices (studies/pendulum-choices-claims.py): the paper's two pendulum claims per
+# setting, then whether the verdict is the same in every setting.
+choices = sr.claims_of("pendulum-choices")
+assert choices is not make_claims
+
+
+def choice_rows(configs, stat="best"):
+    return {claim: (ours, verdict) for claim, _, ours, verdict in choices(configs, {}, stat)}
+
+
+ALL_SAME = "Pendulum: the verdict on AHHS2-15 against AHHS1-60 is the same in every setting"
+up = lambda: list(0.6 + 0.01 * rng.random(8))
+down = lambda: list(0.3 + 0.01 * rng.random(8))
+settings = {"": (up, down), "-gain10": (up, down), "-soft": (down, up)}
+study = [config(f"pendulum-ahhs{v}{suffix}", make(), [5] * 8)
+         for suffix, pair in settings.items() for v, make in zip(("2-15", "1-60"), pair)]
+r = choice_rows(study)
+assert r["Pendulum, task defaults: AHHS2-15 is better than AHHS1-60"][1] == "reproduced (n = 8, 8)"
+assert r["Pendulum, actuator gain 10: AHHS2-15 is better than AHHS1-60"][1] == \
+    "reproduced (n = 8, 8)", r
+assert r["Pendulum, soft walls: AHHS2-15 is better than AHHS1-60"][1] == \
+    "differs, reversed: AHHS1-60 is higher (n = 8, 8)", r
+assert "Pendulum, soft walls: evolution speed (runs reaching 75 % of the maximum, and when)" in r
+assert r[ALL_SAME] == ("task defaults: reproduced; actuator gain 10: reproduced; soft walls: "
+                       "differs, reversed: AHHS1-60 is higher", "depends on the choice"), r[ALL_SAME]
+study[5] = config("pendulum-ahhs1-60-soft", down(), [5] * 8)
+study[4] = config("pendulum-ahhs2-15-soft", up(), [5] * 8)
+assert choice_rows(study)[ALL_SAME][1] == "holds in every setting", choice_rows(study)[ALL_SAME]
+assert choice_rows(study, "robust")[ALL_SAME][1] == "open"  # no robust fitness here
+assert choice_rows(study[:4])[ALL_SAME] == ("not every setting has a verdict yet", "open")
+# A run's setting: its scenario label with the task's choices that are not their defaults.
+run = sr.Run.__new__(sr.Run)
+run.config = {"scenario": "pendulum", "pendulum": {"actuator_gain": 10.0, "walls": "soft"}}
+assert run.setting_label == "pendulum gain 10 soft walls", run.setting_label
+run.config = {"scenario": "pendulum", "pendulum": {"actuator_gain": 1.0, "walls": "rigid"}}
+assert run.setting_label == "pendulum", run.setting_label
+run.config = {"scenario": "gait", "joints": "fixed"}
+assert run.setting_label == "gait-fixed", run.setting_label
 print("study claims: PASS")

@@ -110,9 +110,24 @@ class Run:
         return c["scenario"] + ("-" + c["joints"] if c["scenario"] == "gait" else "")
 
     @property
+    def setting_label(self):
+        """The scenario label with the task's choices that are not their defaults (docs/scenarios.md,
+        "Choices the paper leaves open"): "pendulum gain 10", "pendulum soft walls"; the scenario
+        label itself for the defaults. Runs of one setting share a maximum (evolution speed, the
+        share within 80 % of it)."""
+        choices = self.config.get("pendulum") or {}
+        extra = []
+        gain = float(choices.get("actuator_gain", 1.0))
+        if gain != 1.0:
+            extra.append(f"gain {gain:g}")
+        if choices.get("walls", "rigid") != "rigid":
+            extra.append(f"{choices['walls']} walls")
+        return " ".join([self.scenario_label] + extra)
+
+    @property
     def label(self):
         c = self.config
-        return f"{self.scenario_label} {c['variant'].upper()}-{c['rules']}"
+        return f"{self.setting_label} {c['variant'].upper()}-{c['rules']}"
 
     def best_overall(self):
         return float(np.max(self.best))

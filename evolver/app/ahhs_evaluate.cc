@@ -69,7 +69,14 @@ int main(int argc, char** argv) {
       if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
       std::cout << service.Handle(line).dump() << std::endl;
     }
-    if (g_interrupts > 0) exit_code = ahhs::base::kExitInterrupted;
+    // The end of the input: a recorded run whose last generation is in is validated and
+    // post-evaluated now (stderr: stdout is the protocol's).
+    if (g_interrupts > 0)
+      exit_code = ahhs::base::kExitInterrupted;
+    else
+      ev::FinishRun(setup, farm, stderr);
+  } catch (const ev::FarmInterrupted&) {
+    exit_code = ahhs::base::kExitInterrupted;
   } catch (const std::exception& e) {
     std::cerr << "ahhs-evaluate: " << e.what() << '\n';
     exit_code = ahhs::base::kExitFailure;

@@ -8,6 +8,7 @@
 #include "base/children.h"
 #include "bus/lcm_bus.h"
 #include "evolver/evolve/evolution.h"
+#include "evolver/run/run_end.h"
 #include "evolver/serve/service_run.h"
 #include "modules/core/random.h"
 #include "sim/core/scenario.h"
@@ -65,6 +66,25 @@ void AddEvaluateOptions(cli::App& app, EvaluateOptions* o) {
   app.add_option("--optimizer", o->optimizer, "--out: the optimizer's name, stored with the run")
       ->capture_default_str();
   app.add_flag("--overwrite", o->overwrite, "--out: replace a run already in the directory");
+  app.add_option("--validation", o->validation,
+                 "--out: when the run's last generation is in, choose its best by the median of N "
+                 "validation episodes, as ahhs-evolve does (docs/evolution.md, \"Validation\")")
+      ->check(cli::Range(0, kMaxValidation))
+      ->capture_default_str();
+  app.add_option("--validation-candidates", o->validation_candidates,
+                 "--out: how many of the run's best distinct genomes, and of its last "
+                 "generation's, the validation compares")
+      ->check(cli::Range(1, kMaxValidation))
+      ->capture_default_str();
+  app.add_option("--post-eval", o->post_eval,
+                 "--out: when the run's last generation is in, replay its best on N held-out "
+                 "episodes (RUN/post-eval.json)")
+      ->check(cli::Range(0, kMaxPostEval))
+      ->capture_default_str();
+  app.add_option("--post-eval-envelope", o->post_eval_envelope,
+                 "--out: envelope of the held-out episodes (default: the run's, or paper for a "
+                 "run without one)")
+      ->check(cli::IsMember({"none", "paper", "wide"}));
 }
 
 namespace {
@@ -73,10 +93,27 @@ void CheckCombinations(const cli::App& app, const EvaluateOptions& o) {
   if (!o.out_dir.empty() && !o.resume_dir.empty())
     throw std::invalid_argument("give --out or --resume, not both");
   if (!o.resume_dir.empty()) {
-    for (const char* name : {"--scenario", "--docking", "--joints", "--modules", "--duration",
-                             "--variant", "--hormones", "--rules", "--trials", "--aggregate",
-                             "--seed", "--population", "--generations", "--optimizer",
-                             "--overwrite", "--pendulum.actuator-gain", "--pendulum.walls"})
+    for (const char* name : {"--scenario",
+                             "--docking",
+                             "--joints",
+                             "--modules",
+                             "--duration",
+                             "--variant",
+                             "--hormones",
+                             "--rules",
+                             "--trials",
+                             "--aggregate",
+                             "--seed",
+                             "--population",
+                             "--generations",
+                             "--optimizer",
+                             "--overwrite",
+                             "--pendulum.actuator-gain",
+                             "--pendulum.walls",
+                             "--validation",
+                             "--validation-candidates",
+                             "--post-eval",
+                             "--post-eval-envelope"})
       if (app.count(name))
         throw std::invalid_argument(std::string(name) +
                                     " cannot be given with --resume: the run keeps its own");
@@ -87,8 +124,12 @@ void CheckCombinations(const cli::App& app, const EvaluateOptions& o) {
   if (!o.out_dir.empty() && (o.population == 0 || o.generations == 0))
     throw std::invalid_argument("--out needs --population and --generations");
   if (o.out_dir.empty() && o.resume_dir.empty() &&
-      (app.count("--population") || app.count("--generations") || app.count("--overwrite")))
-    throw std::invalid_argument("--population, --generations and --overwrite go with --out");
+      (app.count("--population") || app.count("--generations") || app.count("--overwrite") ||
+       app.count("--validation") || app.count("--validation-candidates") ||
+       app.count("--post-eval") || app.count("--post-eval-envelope")))
+    throw std::invalid_argument(
+        "--population, --generations, --overwrite, --validation, --validation-candidates, "
+        "--post-eval and --post-eval-envelope go with --out");
 }
 
 // Opens the run of --out or --resume; a resumed run's stored config replaces the settings.
@@ -104,6 +145,13 @@ void OpenRun(const EvaluateOptions& o, const std::string& command_line, Evaluate
   config.ga.aggregate = s->settings.aggregate;
   config.seed = s->settings.seed;
   config.optimizer = o.optimizer;
+  config.validation = o.validation;
+  config.validation_candidates = o.validation_candidates;
+  config.post_eval = o.post_eval;
+  config.post_eval_envelope = !o.post_eval_envelope.empty()
+                                  ? sim::EnvelopePreset(o.post_eval_envelope)
+                              : config.scenario.envelope.none() ? sim::EnvelopePreset("paper")
+                                                                : config.scenario.envelope;
   const bool resume = !o.resume_dir.empty();
   s->store =
       OpenServiceRun(resume ? o.resume_dir : o.out_dir, resume, o.overwrite, s->farm.run, &config);
@@ -116,6 +164,9 @@ void OpenRun(const EvaluateOptions& o, const std::string& command_line, Evaluate
   s->run.optimizer = config.optimizer;
   s->run.population = config.ga.population;
   s->run.generations = config.ga.generations;
+  s->run.validation = config.validation;
+  s->run.post_eval = config.post_eval;
+  s->config = config;
   s->run.session = s->store->BeginSession(command_line);
   s->run.seconds = [] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
@@ -153,6 +204,20 @@ EvaluateSetup SetUpEvaluate(const cli::App& app, const EvaluateOptions& o,
   s.farm.no_worker_timeout =
       std::chrono::milliseconds(static_cast<std::int64_t>(o.worker_wait * 1000));
   return s;
+}
+
+void FinishRun(const EvaluateSetup& setup, FitnessEvaluator& farm, std::FILE* out) {
+  if (!setup.store) return;
+  RunStore& store = *setup.store;
+  if (store.LastGeneration() + 1 < setup.config.ga.generations) return;
+  if (ValidateRun(store, setup.config, farm)) {
+    const auto validation = store.LoadValidation();
+    const IndividualRecord best = store.Best();
+    std::fprintf(out, "validation: the best is generation %d, individual %d (%zu candidates)\n",
+                 best.generation, best.index, validation.size());
+  }
+  if (setup.config.post_eval > 0) PostEvaluateBest(store, setup.config, out);
+  store.Export(true);
 }
 
 }  // namespace ahhs::evolver

@@ -2,10 +2,12 @@
 // options, their checks, and the run that --out or --resume records.
 #pragma once
 
+#include <cstdio>
 #include <memory>
 #include <string>
 
 #include "base/cli.h"
+#include "evolver/evolve/evolution.h"
 #include "evolver/farm/farm_evaluator.h"
 #include "evolver/serve/eval_service.h"
 #include "evolver/store/run_store.h"
@@ -24,6 +26,8 @@ struct EvaluateOptions {
   double job_deadline = 300, worker_wait = 60;
   std::string out_dir, resume_dir, optimizer = "external";
   int population = 0, generations = 0;
+  int validation = 0, validation_candidates = 10, post_eval = 0;
+  std::string post_eval_envelope;
   bool overwrite = false;
 };
 
@@ -31,11 +35,13 @@ struct EvaluateOptions {
 void AddEvaluateOptions(base::cli::App& app, EvaluateOptions* o);
 
 // What the service runs with, once the options are checked: with --out or --resume, the run's
-// store is open and its stored config has replaced the options (`run.store` points into `store`).
+// store is open and its stored config (`config`) has replaced the options (`run.store` points
+// into `store`).
 struct EvaluateSetup {
   ServiceSettings settings;
   FarmOptions farm;
   std::unique_ptr<RunStore> store;
+  EvolveConfig config;
   ServiceRun run;
 };
 
@@ -43,5 +49,12 @@ struct EvaluateSetup {
 // that do not go together, a scenario that does not check, a directory that is not such a run.
 EvaluateSetup SetUpEvaluate(const base::cli::App& app, const EvaluateOptions& o,
                             const std::string& command_line);
+
+// At the end of the service's input, for a recorded run whose last generation is stored: chooses
+// its best by validation and post-evaluates it, as ahhs-evolve does when a run ends (its config's
+// `validation` and `post_eval`; docs/protocol.md, "A run of your optimizer"), writing what it
+// says to `out` (stdout is the protocol's). Nothing to do for a run that is not complete.
+// Exceptions of the farm pass through; a validation is stored whole or not at all.
+void FinishRun(const EvaluateSetup& setup, FitnessEvaluator& farm, std::FILE* out);
 
 }  // namespace ahhs::evolver

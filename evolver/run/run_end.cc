@@ -73,7 +73,7 @@ void PrintRunSummary(const RunStore& store, const EvolveConfig& config) {
     }
 }
 
-void PostEvaluateBest(const RunStore& store, const EvolveConfig& config) {
+void PostEvaluateBest(const RunStore& store, const EvolveConfig& config, std::FILE* out) {
   const IndividualRecord best = store.Best();
   const std::string path = store.dir() + "/post-eval.json";
   const std::string hash = modules::GenomeHashText(best.genome);
@@ -83,14 +83,14 @@ void PostEvaluateBest(const RunStore& store, const EvolveConfig& config) {
       std::ifstream in(path);
       const auto doc = nlohmann::json::parse(in);
       if (doc.at("genome_hash") == hash && doc.at("episodes") == config.post_eval) {
-        std::printf("%s\n", doc.at("description").get<std::string>().c_str());
+        std::fprintf(out, "%s\n", doc.at("description").get<std::string>().c_str());
         return;
       }
     } catch (const std::exception&) {
     }  // damaged or another best's: evaluated again below
   }
-  std::printf("post-evaluating the best on %d held-out episodes ...\n", config.post_eval);
-  std::fflush(stdout);
+  std::fprintf(out, "post-evaluating the best on %d held-out episodes ...\n", config.post_eval);
+  std::fflush(out);
   episode::EpisodeSpec spec;
   spec.config = config.scenario;
   spec.genome = best.genome;
@@ -105,7 +105,7 @@ void PostEvaluateBest(const RunStore& store, const EvolveConfig& config) {
   doc["genome_hash"] = hash;
   doc["training_fitness"] = best.evaluation.fitness;
   base::WriteFileAtomically(path, doc.dump(2) + "\n");
-  std::printf("%s\n", line.c_str());
+  std::fprintf(out, "%s\n", line.c_str());
 }
 
 }  // namespace ahhs::evolver

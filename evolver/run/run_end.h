@@ -2,6 +2,9 @@
 // held-out post-evaluation of its best.
 #pragma once
 
+#include <cstdio>
+#include <string>
+
 #include "evolver/evolve/evolution.h"
 #include "evolver/store/run_store.h"
 
@@ -18,6 +21,6 @@ void PrintRunSummary(const RunStore& store, const EvolveConfig& config);
 // The run's held-out post-evaluation (its config's post_eval episodes): printed, and kept in
 // RUN/post-eval.json, written once for the run's final best (a resume of a finished run that has
 // it only prints it again).
-void PostEvaluateBest(const RunStore& store, const EvolveConfig& config);
+void PostEvaluateBest(const RunStore& store, const EvolveConfig& config, std::FILE* out = stdout);
 
 }  // namespace ahhs::evolver

@@ -67,7 +67,9 @@ json EvalService::Hello() const {
                     {"optimizer", run_->optimizer},
                     {"population", run_->population},
                     {"generations", run_->generations},
-                    {"next_generation", run_->store->LastGeneration() + 1}};
+                    {"next_generation", run_->store->LastGeneration() + 1},
+                    {"validation", run_->validation},
+                    {"post_eval", run_->post_eval}};
   return hello;
 }
 

@@ -56,6 +56,8 @@ struct ServiceRun {
   int population = 0;
   int generations = 0;
   int session = 0;
+  int validation = 0;  // episodes of the validation that chooses the run's best when it ends
+  int post_eval = 0;   // held-out episodes of the best's post-evaluation when it ends
   std::function<double()> seconds;  // wall clock for the generation records (any origin)
 };
 

@@ -106,18 +106,19 @@ class Evaluator:
         return answer["results"]
 
     def close(self):
-        """Ends the service (end of its input) and waits for it."""
+        """Ends the service (end of its input) and waits for it: at most 30 s, or, for a recorded
+        run that validates and post-evaluates its best when its last generation is in (its
+        hello's "run" says so), until it has done that. Returns what the service wrote to its
+        standard error (e.g. the post-evaluation's line), "" once closed."""
         if self._proc is None:
-            return
+            return ""
+        run = (self.hello or {}).get("run") or {}
+        finishing = run.get("validation", 0) > 0 or run.get("post_eval", 0) > 0
+        # communicate closes its input and reads its output meanwhile (a full pipe cannot stop it).
         try:
-            self._proc.stdin.close()
-        except BrokenPipeError:
-            pass
-        try:
-            self._proc.wait(timeout=30)
+            _, said = self._proc.communicate(timeout=None if finishing else 30)
         except subprocess.TimeoutExpired:
             self._proc.kill()
-            self._proc.wait()
-        for stream in (self._proc.stdout, self._proc.stderr):
-            stream.close()
+            _, said = self._proc.communicate()
         self._proc = None
+        return said or ""

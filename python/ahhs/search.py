@@ -98,4 +98,10 @@ def run_search(run_dir, make_optimizer, evaluation=(), population=None, generati
             if log:
                 best = max(r["fitness"] for r in results)
                 log("generation %d of %d: best %.6g" % (generation - 1, run["generations"], best))
+        # The end of the service's input: a complete run is validated and post-evaluated now.
+        said = ev.close()
+        if log:
+            for line in said.splitlines():
+                if line.startswith(("validation:", "post-evaluation")):
+                    log(line)
     return optimizer

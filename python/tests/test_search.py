@@ -59,10 +59,11 @@ def wait_for_service_to_end(run_dir, seconds=30):
 
 
 class SearchTest(unittest.TestCase):
-    def run_killed_and_whole(self, script, options, generations):
+    def run_killed_and_whole(self, script, options, generations, evaluation=()):
         tmp = tempfile.mkdtemp(prefix="ahhs-search-")
         whole, killed = os.path.join(tmp, "whole"), os.path.join(tmp, "killed")
-        argv = example(script) + options + ["--generations", str(generations)] + FARM + TASK
+        argv = (example(script) + options + ["--generations", str(generations)] + FARM + TASK +
+                list(evaluation))
         subprocess.run(argv[:2] + [whole] + argv[2:], check=True, capture_output=True)
         at = random.Random().randint(2, generations - 3)
         p = subprocess.Popen(argv[:2] + [killed] + argv[2:], stdout=subprocess.DEVNULL,
@@ -77,13 +78,33 @@ class SearchTest(unittest.TestCase):
         out = subprocess.run(argv[:2] + [killed] + argv[2:], check=True, capture_output=True,
                              text=True).stdout
         self.assertIn("resuming %s at generation %d" % (killed, stored), out)
+        self.resumed_output = out
         self.assertEqual(dump(whole), dump(killed), "killed after %d generations" % stored)
         self.assertEqual(len(dump(whole)), generations * 8 * 3)
         return whole, killed, stored
 
-    def test_cma_es_resumes_exactly(self):
-        whole, _, stored = self.run_killed_and_whole("cmaes.py", ["--population", "8"], 12)
+    def test_cma_es_resumes_exactly_and_validates_its_best(self):
+        whole, killed, stored = self.run_killed_and_whole(
+            "cmaes.py", ["--population", "8"], 12,
+            ["--validation", "3", "--validation-candidates", "3", "--post-eval", "4"])
         print("cma-es: killed after %d generations, resumed: identical" % stored)
+        # Its best is chosen by validation and post-evaluated when it ends, as ahhs-evolve does it:
+        # the same in the killed run (validated by the resumed service) as in the whole one.
+        validation = "SELECT candidate, generation, idx, episode, seed, fitness FROM validation " \
+                     "ORDER BY candidate, episode"
+        tables = [sqlite3.connect(os.path.join(d, "run.sqlite")).execute(validation).fetchall()
+                  for d in (whole, killed)]
+        self.assertEqual(len(tables[0]), 3 * len({row[0] for row in tables[0]}))
+        self.assertEqual(tables[0], tables[1])
+        post = []
+        for d in (whole, killed):
+            with open(os.path.join(d, "post-eval.json")) as f:
+                post.append(json.load(f))
+            with open(os.path.join(d, "best.json")) as f:
+                self.assertEqual(json.load(f)["meta"]["validation"]["episodes"], 3)
+        self.assertEqual(post[0], post[1])
+        self.assertEqual(post[0]["episodes"], 4)
+        self.assertIn("post-evaluation on 4 held-out episodes", self.resumed_output)
         # The GA does not resume it.
         out = subprocess.run([os.path.join(BIN, "ahhs-evolve"), "--resume", whole],
                              capture_output=True, text=True)

@@ -2,7 +2,8 @@
 # ahhs-evaluate, the ask/tell evaluation service, end to end inside a private network namespace:
 # its hello line; answers whose every trial ahhs-launch reproduces bit for bit (genome documents
 # and vectors, trials under an envelope); one error line per bad request, the service going on;
-# the same request, the same answer; external workers only; the end of input ends it cleanly.
+# the same request, the same answer; external workers only; the end of input ends it cleanly; a
+# recorded run is validated and post-evaluated when its input ends, as ahhs-evolve does.
 bin=${1:?usage: evaluate_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_netns "$0" "$@"
@@ -86,7 +87,39 @@ head -1 $tmp/requests | $S $scenario --trials 2 --envelope paper --workers 0 --l
   fail "external: $(cat $tmp/err)"
 kill $w; wait $w 2>/dev/null
 [[ "$(sed -n 2p $tmp/ext)" == "$(sed -n 2p $tmp/out)" ]] || fail "external workers answer otherwise: $(cat $tmp/ext)"
-echo "== 4. bad options"
+echo "== 4. a recorded run is validated and post-evaluated when its input ends"
+python3 - >$tmp/run-requests <<'PY'
+import json
+for gen in range(2):
+    print(json.dumps({"v": 2, "generation": gen,
+                      "genomes": [{"vector": [0.1 * (gen + k + 1)] * (15 + 13 * 30)} for k in range(3)]}))
+PY
+$S $scenario --trials 2 --envelope paper --workers 2 --lcm-url "$url" --out $tmp/run --population 3 \
+  --generations 2 --validation 3 --validation-candidates 2 --post-eval 4 <$tmp/run-requests \
+  >$tmp/run.out 2>$tmp/run.err || fail "recorded run: $(cat $tmp/run.err)"
+# stdout holds the protocol only: the hello (which says what the end brings) and two answers.
+python3 - $tmp/run.out <<'PY' || fail "stdout of a recorded run: $(cat $tmp/run.out)"
+import json, sys
+lines = [json.loads(l) for l in open(sys.argv[1])]
+assert len(lines) == 3, lines
+assert lines[0]["run"]["validation"] == 3 and lines[0]["run"]["post_eval"] == 4, lines[0]
+PY
+grep -q "^validation: the best is generation" $tmp/run.err || fail "no validation: $(cat $tmp/run.err)"
+said=$(grep "^post-evaluation on 4 held-out episodes" $tmp/run.err) || fail "no post-evaluation: $(cat $tmp/run.err)"
+python3 - $tmp/run <<'PY' || fail "best.json and post-eval.json of a recorded run"
+import json, sys
+best = json.load(open(sys.argv[1] + "/best.json"))
+post = json.load(open(sys.argv[1] + "/post-eval.json"))
+assert best["meta"]["validation"]["episodes"] == 3, best["meta"]
+assert post["episodes"] == 4 and post["generation"] == best["meta"]["generation"], post
+PY
+# ahhs-replay's post-evaluation of the chosen best says the same; a resume has nothing left to do.
+"$bin/ahhs-replay" $tmp/run --post-eval 4 | grep -qxF "$said" || fail "ahhs-replay disagrees: $said"
+$S --resume $tmp/run --workers 1 --lcm-url "$url" </dev/null >$tmp/r.out 2>$tmp/r.err || fail "resume: $(cat $tmp/r.err)"
+[[ "$(cat $tmp/r.err)" == "$said" ]] || fail "a resumed finished run: $(cat $tmp/r.err)"
+$S $scenario --validation 3 </dev/null >$tmp/o 2>&1; [[ $? == 2 ]] && grep -q "go with --out" $tmp/o ||
+  fail "--validation without --out: $(cat $tmp/o)"
+echo "== 5. bad options"
 $S --trials 0 </dev/null >$tmp/o 2>&1; [[ $? == 2 ]] || fail "--trials 0: $(cat $tmp/o)"
 $S --scenario walker </dev/null >$tmp/o 2>&1; [[ $? == 2 ]] && grep -q "unknown scenario" $tmp/o || fail "bad scenario: $(cat $tmp/o)"
 echo PASS

@@ -1,21 +1,29 @@
 #!/usr/bin/env python3
-"""The paper's GA, CMA-ES and MAP-Elites on the pendulum (AHHS2-15), with equal evaluation
-budgets (200 genomes x 200 generations = 40,000 episodes per run), 10 runs each, every run's
-best judged on held-out episodes (docs/results.md, "Searches beyond the GA").
+"""The paper's GA, CMA-ES and MAP-Elites with equal evaluation budgets, 10 runs each, every run's
+best judged on held-out episodes (docs/results.md, "Searches beyond the GA"), in two settings:
 
-    /usr/bin/python3 studies/search-comparison.py run OUT_DIR --bin build/bin     # resumable
-    /usr/bin/python3 studies/search-comparison.py report OUT_DIR --bin build/bin  # -> studies/search-comparison/
+- `pendulum` (AHHS2-15): 200 genomes x 200 generations = 40,000 episodes per run. The GA's runs
+  are the first study's (studies/paper-2010/pendulum-ahhs2-15, seeds 1-10: the same preset, the
+  same physics); every best is post-evaluated here on 50 held-out episodes under the `paper`
+  envelope (ahhs-replay --post-eval 50).
+- `gait-fixed` (AHHS2-50, the robust gait): 20 genomes x 200 generations x 5 trials (their
+  median) under the `paper` envelope, 20,000 episodes per run, each run's best chosen among its
+  leaders on 20 validation episodes and post-evaluated on 50 held-out ones when it ends, the GA
+  by ahhs-evolve and the others by ahhs-evaluate --validation 20 --post-eval 50: the same
+  candidates, seeds and rules. The GA's runs are the robust study's
+  (studies/paper-2010-robust/gait-fixed-ahhs2-50, the same preset and settings), taken as that
+  study exports them; about 37 min per run on 2 cores.
 
-The GA's runs are the first study's (studies/paper-2010/pendulum-ahhs2-15, seeds 1-10: the
-same preset, the same physics); CMA-ES and MAP-Elites run with examples/optimizers/, each run
-seeded by its number (optimizer and evaluation seeds). `run` is resumable: run it again after a
-stop and every run goes on from its checkpoint. A finished run is exported to
-studies/search-comparison/runs/SEARCH/seed-N/ (its best.json, generations.csv and, for
-MAP-Elites, archive.json: about 35 kB, committed), and a run with an export is not run again, so
-a fresh machine goes on where the last one stopped. `report` reads the exports and post-evaluates every best genome on 50
-held-out episodes under the `paper` envelope (ahhs-replay --post-eval 50), tests the medians
-with two-sided Wilcoxon rank-sum tests, and writes results.json, results.md and a figure to
-studies/search-comparison/.
+    /usr/bin/python3 studies/search-comparison.py run OUT_DIR --bin build/bin [--setting gait-fixed]     # resumable
+    /usr/bin/python3 studies/search-comparison.py report OUT_DIR --bin build/bin [--setting gait-fixed]
+
+CMA-ES and MAP-Elites run with examples/optimizers/, each run seeded by its number (optimizer and
+evaluation seeds). `run` is resumable: run it again after a stop and every run goes on from its
+checkpoint. A finished run is exported to studies/search-comparison/[SETTING/]runs/SEARCH/seed-N/
+(its best.json, generations.csv, post-eval.json and, for MAP-Elites, archive.json: tens of kB,
+committed), and a run with an export is not run again, so a fresh machine goes on where the last
+one stopped. `report` reads the exports, tests the held-out medians with two-sided Wilcoxon
+rank-sum tests, and writes results.json, results.md and a figure beside them.
 """
 import argparse
 import json
@@ -26,25 +34,51 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.path.dirname(HERE)
 SEEDS = range(1, 11)
-CONFIGURATION = ["--scenario", "pendulum", "--variant", "ahhs2", "--hormones", "15", "--rules", "15"]
-SEARCHES = {
-    "cma-es": ["cmaes.py", "--population", "200", "--generations", "200", "--sigma", "0.2"],
-    "map-elites": ["map_elites.py", "--batch", "200", "--generations", "200", "--cells", "10",
-                   "--sigma", "0.1"],
-}
+GENERATIONS = 200
 POST_EVAL = 50
-EXPORT = os.path.join(HERE, "search-comparison", "runs")
-EXPORTED = ["best.json", "generations.csv", "archive.json"]
+SETTINGS = {
+    "pendulum": {
+        "configuration": ["--scenario", "pendulum", "--variant", "ahhs2", "--hormones", "15",
+                          "--rules", "15"],
+        "searches": {
+            "cma-es": ["cmaes.py", "--population", "200", "--sigma", "0.2"],
+            "map-elites": ["map_elites.py", "--batch", "200", "--cells", "10", "--sigma", "0.1"],
+        },
+        "out": os.path.join(HERE, "search-comparison"),
+        "ga": os.path.join(HERE, "paper-2010", "pendulum-ahhs2-15"),
+        "budget": 40000,
+        "title": "Pendulum, AHHS2-15: 40,000 episodes per run",
+    },
+    "gait-fixed": {
+        "configuration": ["--scenario", "gait", "--docking", "fixed", "--variant", "ahhs2",
+                          "--hormones", "5", "--rules", "50", "--trials", "5", "--aggregate",
+                          "median", "--envelope", "paper", "--validation", "20", "--post-eval",
+                          str(POST_EVAL)],
+        "searches": {
+            "cma-es": ["cmaes.py", "--population", "20", "--sigma", "0.2"],
+            "map-elites": ["map_elites.py", "--batch", "20", "--cells", "10", "--sigma", "0.1"],
+        },
+        "out": os.path.join(HERE, "search-comparison", "gait-fixed"),
+        "ga": os.path.join(HERE, "paper-2010-robust", "gait-fixed-ahhs2-50"),
+        "budget": 20000,
+        "title": "Robust fixed gait, AHHS2-50: 20,000 episodes per run",
+    },
+}
+EXPORTED = ["best.json", "generations.csv", "post-eval.json", "archive.json"]
 
 
-def complete(run_dir):
+def complete(run_dir, setting):
+    """All generations in, and for a setting whose runs end with a post-evaluation, that too."""
     csv = os.path.join(run_dir, "generations.csv")
-    return os.path.exists(csv) and sum(1 for _ in open(csv)) == 201
+    if not os.path.exists(csv) or sum(1 for _ in open(csv)) != GENERATIONS + 1:
+        return False
+    return "--post-eval" not in setting["configuration"] or \
+        os.path.exists(os.path.join(run_dir, "post-eval.json"))
 
 
-def export(run_dir, name, seed):
-    """Copies a finished run's small files to EXPORT/name/seed-N/ (each file atomically)."""
-    target = os.path.join(EXPORT, name, "seed-%d" % seed)
+def export(run_dir, setting, name, seed):
+    """Copies a finished run's small files to OUT/runs/name/seed-N/ (each file atomically)."""
+    target = os.path.join(setting["out"], "runs", name, "seed-%d" % seed)
     os.makedirs(target, exist_ok=True)
     for f in EXPORTED:
         if os.path.exists(os.path.join(run_dir, f)):
@@ -56,24 +90,28 @@ def export(run_dir, name, seed):
 
 
 def run(args):
+    setting = SETTINGS[args.setting]
     for seed in SEEDS:
-        for name, (script, *options) in SEARCHES.items():
-            run_dir = os.path.join(args.out, name, "seed-%d" % seed)
+        for name, (script, *options) in setting["searches"].items():
+            run_dir = os.path.join(args.out, args.setting, name, "seed-%d" % seed)
             os.makedirs(os.path.dirname(run_dir), exist_ok=True)
             argv = [sys.executable, os.path.join(SOURCE, "examples", "optimizers", script),
-                    run_dir, "--bin", args.bin, "--seed", str(seed), "--farm",
+                    run_dir, "--bin", args.bin, "--seed", str(seed), "--generations",
+                    str(GENERATIONS), "--farm",
                     "--workers %d --lcm-url %s" % (args.workers, args.lcm_url)] + options + \
-                ["--"] + CONFIGURATION + ["--seed", str(seed)]
-            if complete(os.path.join(EXPORT, name, "seed-%d" % seed)):
+                ["--"] + setting["configuration"] + ["--seed", str(seed)]
+            if complete(os.path.join(setting["out"], "runs", name, "seed-%d" % seed), setting):
                 continue
-            if not complete(run_dir):
-                print("%s seed %d" % (name, seed), flush=True)
+            if not complete(run_dir, setting):
+                print("%s %s seed %d" % (args.setting, name, seed), flush=True)
                 subprocess.run(argv, check=True, stdout=subprocess.DEVNULL)
-            export(run_dir, name, seed)
+            export(run_dir, setting, name, seed)
 
 
 def post_eval(bin_dir, genome, out_json):
+    """A genome's post-evaluation by ahhs-replay, kept in out_json."""
     if not os.path.exists(out_json):
+        os.makedirs(os.path.dirname(out_json), exist_ok=True)
         subprocess.run([os.path.join(bin_dir, "ahhs-replay"), "--genome", genome, "--scenario",
                         "pendulum", "--post-eval", str(POST_EVAL), "--post-eval-json",
                         out_json + ".tmp"], check=True, stdout=subprocess.DEVNULL)
@@ -89,34 +127,48 @@ def report(args):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    out = os.path.join(HERE, "search-comparison")
+    setting = SETTINGS[args.setting]
+    out = setting["out"]
     os.makedirs(out, exist_ok=True)
-    bests = {"ga": [], "cma-es": [], "map-elites": []}
+    searches = ["ga"] + list(setting["searches"])
+    held_out = {n: [] for n in searches}  # per search: (seed, training best, post-evaluation)
     for seed in SEEDS:
-        ga = os.path.join(HERE, "paper-2010", "pendulum-ahhs2-15", "seed-%d" % seed)
+        ga = os.path.join(setting["ga"], "seed-%d" % seed)
+        if not os.path.exists(os.path.join(ga, "summary.json")):
+            raise SystemExit("%s: not exported yet by its study" % ga)
         with open(os.path.join(ga, "summary.json")) as f:
-            training = json.load(f)["best_fitness"]
-        bests["ga"].append((seed, os.path.join(ga, "best.json"), training))
-        for name in SEARCHES:
-            run_dir = os.path.join(EXPORT, name, "seed-%d" % seed)
-            if not complete(run_dir):
+            summary = json.load(f)
+        if "--post-eval" in setting["configuration"]:  # the GA run post-evaluated its best
+            if "post_eval" not in summary:
+                raise SystemExit("%s: its export has no post-evaluation" % ga)
+            evaluation = summary["post_eval"]
+        else:
+            cache = os.path.join(args.out, args.setting, "post-eval", "ga-seed-%d.json" % seed)
+            evaluation = post_eval(args.bin, os.path.join(ga, "best.json"), cache)
+        held_out["ga"].append((seed, summary["best_fitness"], evaluation))
+        for name in setting["searches"]:
+            run_dir = os.path.join(out, "runs", name, "seed-%d" % seed)
+            if not complete(run_dir, setting):
                 raise SystemExit("%s: not exported yet; finish it with `run`" % run_dir)
             with open(os.path.join(run_dir, "generations.csv")) as f:
                 rows = list(f)[1:]
             training = max(float(r.split(",")[1]) for r in rows)
-            bests[name].append((seed, os.path.join(run_dir, "best.json"), training))
-    results = {"post_eval_episodes": POST_EVAL, "envelope": "paper", "budget": 40000,
-               "searches": {}}
-    for name, runs in bests.items():
-        rows = []
-        for seed, genome, training in runs:
-            cache = os.path.join(args.out, "post-eval", "%s-seed-%d.json" % (name, seed))
-            os.makedirs(os.path.dirname(cache), exist_ok=True)
-            d = post_eval(args.bin, genome, cache)
-            rows.append({"seed": seed, "training_best": training, "post_eval_median": d["median"],
-                         "post_eval_q25": d["lower_quartile"],
-                         "post_eval_q75": d["upper_quartile"]})
-        results["searches"][name] = rows
+            if "--post-eval" in setting["configuration"]:
+                with open(os.path.join(run_dir, "post-eval.json")) as f:
+                    evaluation = json.load(f)
+            else:
+                cache = os.path.join(args.out, args.setting, "post-eval",
+                                     "%s-seed-%d.json" % (name, seed))
+                evaluation = post_eval(args.bin, os.path.join(run_dir, "best.json"), cache)
+            held_out[name].append((seed, training, evaluation))
+    results = {"setting": args.setting, "post_eval_episodes": POST_EVAL, "envelope": "paper",
+               "budget": setting["budget"], "searches": {}}
+    for name, runs in held_out.items():
+        results["searches"][name] = [
+            {"seed": seed, "training_best": training, "post_eval_median": d["median"],
+             "post_eval_q25": d["lower_quartile"], "post_eval_q75": d["upper_quartile"],
+             "success_share": d.get("success_share")}
+            for seed, training, d in runs]
     medians = {n: [r["post_eval_median"] for r in rows]
                for n, rows in results["searches"].items()}
     tests = []
@@ -134,7 +186,7 @@ def report(args):
     for k, n in enumerate(names):
         ax.scatter(np.full(len(medians[n]), k + 1.0), medians[n], s=12, color="k", zorder=3)
     ax.set_ylabel("held-out median fitness of the run's best")
-    ax.set_title("Pendulum, AHHS2-15: 40,000 episodes per run, 10 runs each")
+    ax.set_title(setting["title"] + ", 10 runs each")
     fig.savefig(os.path.join(out, "post_eval.png"), dpi=110, bbox_inches="tight")
     md = ["| search | runs | training best: median | held-out median: median | q25 | q75 |",
           "|---|---|---|---|---|---|"]
@@ -154,6 +206,7 @@ def report(args):
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("command", choices=["run", "report"])
+    p.add_argument("--setting", choices=sorted(SETTINGS), default="pendulum")
     p.add_argument("out", help="where the runs go (large; not committed)")
     p.add_argument("--bin", default=os.path.join(SOURCE, "build", "bin"))
     p.add_argument("--workers", type=int, default=2)

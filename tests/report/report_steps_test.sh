@@ -56,6 +56,18 @@ echo "== the random pendulum genomes of docs/results.md (1 per setting)"
 [[ $(grep -c "^| .* | [01] of 1 | " $tmp/random.md) == 7 && $(wc -l <$tmp/random.md) == 9 ]] ||
   fail "random genomes table: $(cat $tmp/random.md)"
 
+echo "== the pendulum behaviour table of docs/results.md (one exported run per configuration)"
+for v in ahhs1-60 ahhs2-15; do
+  mkdir -p $tmp/study/pendulum-$v/seed-1
+  cp "$AHHS_SOURCE_DIR/tests/fixtures/genomes/pendulum-$v-seed1.json" $tmp/study/pendulum-$v/seed-1/best.json
+  echo '{}' >$tmp/study/pendulum-$v/seed-1/summary.json
+done
+"$AHHS_SOURCE_DIR/studies/pendulum-behaviour.py" "$bin" $tmp/study >$tmp/behaviour.md 2>&1 ||
+  fail "pendulum behaviour: $(cat $tmp/behaviour.md)"
+# The AHHS1-60 best (0.666) keeps its cart at the left wall and spins the pendulum (docs/results.md).
+grep -Eq '^\| pendulum-ahhs1-60 \| 1 \| 0\.666 \| [6-9][0-9] % \([0-9]+-[0-9]+ %\) \| 1 \| [67][0-9] % \| [1-9][0-9] \|$' $tmp/behaviour.md &&
+  grep -q '^| pendulum-ahhs2-15 | 1 | ' $tmp/behaviour.md || fail "pendulum behaviour table: $(cat $tmp/behaviour.md)"
+
 echo "== bad input"
 "$bin/ahhs-report" neighbourhood $tmp/nothing.json -o $tmp/x >$tmp/err 2>&1 && fail "missing genome accepted"
 grep -q "no such genome file" $tmp/err || fail "missing genome message: $(cat $tmp/err)"

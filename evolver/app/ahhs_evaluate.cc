@@ -51,13 +51,13 @@ int main(int argc, char** argv) {
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
-  int workers = options.workers;
+  int workers = options.farm.workers;
   if (workers < 0) workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   ahhs::base::ChildProcesses local;
   int exit_code = ahhs::base::kExitOk;
   try {
-    ev::StartLocalWorkers(&local, workers, options.url, options.arena, setup.farm.run);
-    auto bus = ahhs::bus::OpenBusWithFaultInjection(options.url);
+    ev::StartLocalWorkers(&local, workers, options.farm.url, options.farm.arena, setup.farm.run);
+    auto bus = ahhs::bus::OpenBusWithFaultInjection(options.farm.url);
     ev::FarmEvaluator::Hooks hooks;
     hooks.interrupted = [] { return g_interrupts > 0; };
     hooks.report = [](const std::string& text) { std::cerr << "ahhs-evaluate: " << text << '\n'; };

@@ -99,25 +99,27 @@ int main(int argc, char** argv) {
   const std::string self = ahhs::base::ExecutableDir() + "/ahhs-evolve";
 
   // Local workers, started before our own bus exists.
-  if (options.workers < 0)
-    options.workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (options.farm.workers < 0)
+    options.farm.workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   ahhs::base::ChildProcesses local;
   int restarts = 0;
   if (to_evaluate)
-    ev::StartLocalWorkers(&local, options.workers, options.url, options.arena, store->run_id());
+    ev::StartLocalWorkers(&local, options.farm.workers, options.farm.url, options.farm.arena,
+                          store->run_id());
 
   ev::Progress progress(first, config.ga.generations);
   std::printf("run directory: %s\n", dir.c_str());
   std::printf("%s\n", ev::DescribeRun(config, first).c_str());
   std::printf("workers: %d local (%s arena)%s; more: %s/ahhs-worker --lcm-url '%s' --run %s\n",
-              static_cast<int>(local.size()), options.arena.c_str(),
-              options.workers == 0 ? ", waiting for external ones" : "",
-              ahhs::base::ExecutableDir().c_str(), options.url.c_str(), store->run_id().c_str());
+              static_cast<int>(local.size()), options.farm.arena.c_str(),
+              options.farm.workers == 0 ? ", waiting for external ones" : "",
+              ahhs::base::ExecutableDir().c_str(), options.farm.url.c_str(),
+              store->run_id().c_str());
   std::fflush(stdout);
 
   int exit_code = 0;
   try {
-    auto bus = ahhs::bus::OpenBusWithFaultInjection(options.url);
+    auto bus = ahhs::bus::OpenBusWithFaultInjection(options.farm.url);
     int current_generation = first;
     ev::FarmEvaluator::Hooks hooks;
     hooks.interrupted = [&] { return g_interrupts > 0; };

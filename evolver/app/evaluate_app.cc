@@ -18,7 +18,6 @@ namespace ahhs::evolver {
 namespace cli = base::cli;
 
 void AddEvaluateOptions(cli::App& app, EvaluateOptions* o) {
-  o->url = bus::kDefaultLcmUrl;
   o->scenario.Add(app, "", "episode length in simulated seconds (default: the scenario's)");
   o->envelope.Add(app,
                   "envelope of noise of every episode: none, paper or wide (docs/scenarios.md)");
@@ -41,20 +40,7 @@ void AddEvaluateOptions(cli::App& app, EvaluateOptions* o) {
   app.add_option("--seed", o->seed, "seed of the requests that bring none")
       ->check(modules::SeedTextError)
       ->capture_default_str();
-  app.add_option("--workers", o->workers, "local workers (default: one per core; 0: only external)")
-      ->check(cli::Range(0, 256));
-  app.add_option("--arena-kind", o->arena, "how local workers evaluate: direct, fused or processes")
-      ->check(cli::IsMember({"direct", "fused", "processes"}))
-      ->capture_default_str();
-  app.add_option("--lcm-url", o->url, "LCM URL of the farm (ttl=1 to use LAN workers)")
-      ->capture_default_str();
-  app.add_option("--job-deadline", o->job_deadline, "seconds before an evaluation is re-issued")
-      ->check(cli::PositiveNumber)
-      ->capture_default_str();
-  app.add_option("--worker-wait", o->worker_wait,
-                 "seconds without any worker before a request fails")
-      ->check(cli::PositiveNumber)
-      ->capture_default_str();
+  AddFarmOptions(app, &o->farm, "seconds without any worker before a request fails");
   app.add_option(
       "--out", o->out_dir,
       "record the run in this directory: each request one generation (docs/protocol.md)");
@@ -66,25 +52,7 @@ void AddEvaluateOptions(cli::App& app, EvaluateOptions* o) {
   app.add_option("--optimizer", o->optimizer, "--out: the optimizer's name, stored with the run")
       ->capture_default_str();
   app.add_flag("--overwrite", o->overwrite, "--out: replace a run already in the directory");
-  app.add_option("--validation", o->validation,
-                 "--out: when the run's last generation is in, choose its best by the median of N "
-                 "validation episodes, as ahhs-evolve does (docs/evolution.md, \"Validation\")")
-      ->check(cli::Range(0, kMaxValidation))
-      ->capture_default_str();
-  app.add_option("--validation-candidates", o->validation_candidates,
-                 "--out: how many of the run's best distinct genomes, and of its last "
-                 "generation's, the validation compares")
-      ->check(cli::Range(1, kMaxValidation))
-      ->capture_default_str();
-  app.add_option("--post-eval", o->post_eval,
-                 "--out: when the run's last generation is in, replay its best on N held-out "
-                 "episodes (RUN/post-eval.json)")
-      ->check(cli::Range(0, kMaxPostEval))
-      ->capture_default_str();
-  app.add_option("--post-eval-envelope", o->post_eval_envelope,
-                 "--out: envelope of the held-out episodes (default: the run's, or paper for a "
-                 "run without one)")
-      ->check(cli::IsMember({"none", "paper", "wide"}));
+  AddRunEndOptions(app, &o->end, "--out: ");
 }
 
 namespace {
@@ -93,27 +61,14 @@ void CheckCombinations(const cli::App& app, const EvaluateOptions& o) {
   if (!o.out_dir.empty() && !o.resume_dir.empty())
     throw std::invalid_argument("give --out or --resume, not both");
   if (!o.resume_dir.empty()) {
-    for (const char* name : {"--scenario",
-                             "--docking",
-                             "--joints",
-                             "--modules",
-                             "--duration",
-                             "--variant",
-                             "--hormones",
-                             "--rules",
-                             "--trials",
-                             "--aggregate",
-                             "--seed",
-                             "--population",
-                             "--generations",
-                             "--optimizer",
-                             "--overwrite",
-                             "--pendulum.actuator-gain",
-                             "--pendulum.walls",
-                             "--validation",
-                             "--validation-candidates",
-                             "--post-eval",
-                             "--post-eval-envelope"})
+    for (const char* name : {"--scenario", "--docking", "--joints", "--modules", "--duration",
+                             "--variant", "--hormones", "--rules", "--trials", "--aggregate",
+                             "--seed", "--population", "--generations", "--optimizer",
+                             "--overwrite", "--pendulum.actuator-gain", "--pendulum.walls"})
+      if (app.count(name))
+        throw std::invalid_argument(std::string(name) +
+                                    " cannot be given with --resume: the run keeps its own");
+    for (const char* name : kRunEndOptionNames)
       if (app.count(name))
         throw std::invalid_argument(std::string(name) +
                                     " cannot be given with --resume: the run keeps its own");
@@ -145,13 +100,7 @@ void OpenRun(const EvaluateOptions& o, const std::string& command_line, Evaluate
   config.ga.aggregate = s->settings.aggregate;
   config.seed = s->settings.seed;
   config.optimizer = o.optimizer;
-  config.validation = o.validation;
-  config.validation_candidates = o.validation_candidates;
-  config.post_eval = o.post_eval;
-  config.post_eval_envelope = !o.post_eval_envelope.empty()
-                                  ? sim::EnvelopePreset(o.post_eval_envelope)
-                              : config.scenario.envelope.none() ? sim::EnvelopePreset("paper")
-                                                                : config.scenario.envelope;
+  ApplyRunEndOptions(o.end, &config);
   const bool resume = !o.resume_dir.empty();
   s->store =
       OpenServiceRun(resume ? o.resume_dir : o.out_dir, resume, o.overwrite, s->farm.run, &config);
@@ -199,10 +148,7 @@ EvaluateSetup SetUpEvaluate(const cli::App& app, const EvaluateOptions& o,
   s.farm.config = s.settings.scenario;  // (a resumed run's own)
   s.farm.population = kMaxServiceBatch;
   s.farm.trials = s.settings.trials;
-  s.farm.lease.job_deadline =
-      std::chrono::milliseconds(static_cast<std::int64_t>(o.job_deadline * 1000));
-  s.farm.no_worker_timeout =
-      std::chrono::milliseconds(static_cast<std::int64_t>(o.worker_wait * 1000));
+  ApplyFarmOptions(o.farm, &s.farm);
   return s;
 }
 

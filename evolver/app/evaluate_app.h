@@ -9,6 +9,7 @@
 #include "base/cli.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/farm/farm_evaluator.h"
+#include "evolver/run/shared_options.h"
 #include "evolver/serve/eval_service.h"
 #include "evolver/store/run_store.h"
 #include "sim/node/envelope_options.h"
@@ -19,15 +20,13 @@ namespace ahhs::evolver {
 struct EvaluateOptions {
   sim::ScenarioOptions scenario;
   sim::EnvelopeOptions envelope;
-  std::string variant = "ahhs2", aggregate = "mean", url, arena = "direct";
+  std::string variant = "ahhs2", aggregate = "mean";
   int hormones = 5, rules = 30, trials = 1;
   std::uint64_t seed = 1;
-  int workers = -1;  // -1: one per core
-  double job_deadline = 300, worker_wait = 60;
+  FarmCliOptions farm;
   std::string out_dir, resume_dir, optimizer = "external";
   int population = 0, generations = 0;
-  int validation = 0, validation_candidates = 10, post_eval = 0;
-  std::string post_eval_envelope;
+  RunEndCliOptions end;  // with --out
   bool overwrite = false;
 };
 

@@ -48,26 +48,8 @@ void AddEvolveOptions(cli::App& app, EvolveOptions* o) {
   app.add_option("--aggregate", o->aggregate, "an individual's fitness from its trials")
       ->check(cli::IsMember({"mean", "median", "min"}))
       ->capture_default_str();
-  app.add_option("--post-eval", o->post_eval,
-                 "when the run ends, replay its best on N held-out episodes: median, quartiles, "
-                 "min and the share that succeeds, also in RUN/post-eval.json")
-      ->check(cli::Range(0, kMaxPostEval))
-      ->default_str("0; 50 without --config and --scenario");
-  app.add_option("--validation", o->validation,
-                 "when the run ends, choose its best by the median of N validation episodes "
-                 "among its --validation-candidates best genomes and its last generation's "
-                 "(0: the highest training fitness)")
-      ->check(cli::Range(0, kMaxValidation))
-      ->default_str("0; 20 without --config and --scenario");
-  app.add_option("--validation-candidates", o->validation_candidates,
-                 "how many of the run's best distinct genomes, and of its last generation's, "
-                 "the validation compares")
-      ->check(cli::Range(1, kMaxValidation))
-      ->capture_default_str();
-  app.add_option("--post-eval-envelope", o->post_eval_envelope,
-                 "envelope of the held-out episodes (default: the run's, or paper for a run "
-                 "without one)")
-      ->check(cli::IsMember({"none", "paper", "wide"}));
+  AddRunEndOptions(app, &o->end, "", "0; 20 without --config and --scenario",
+                   "0; 50 without --config and --scenario");
   o->envelope.Add(app,
                   "envelope of noise every episode is perturbed with: none (the paper), paper or "
                   "wide (docs/scenarios.md); default none, paper without --config and --scenario");
@@ -82,21 +64,8 @@ void AddEvolveOptions(cli::App& app, EvolveOptions* o) {
   app.add_flag("--overwrite", o->overwrite, "replace an existing run directory given with --out");
   app.add_flag("--show-config", o->show_config,
                "print the run's configuration as JSON and exit (nothing is created or run)");
-  app.add_option("--workers", o->workers,
-                 "local worker processes to start (default: one per core; 0: only external)")
-      ->check(cli::Range(0, 256));
-  app.add_option("--arena-kind", o->arena, "how local workers evaluate: direct, fused or processes")
-      ->check(cli::IsMember({"direct", "fused", "processes"}))
-      ->capture_default_str();
-  app.add_option("--lcm-url", o->url, "LCM URL of the evaluation farm (ttl=1 to use LAN workers)")
-      ->capture_default_str();
-  app.add_option("--job-deadline", o->job_deadline, "seconds before an evaluation is re-issued")
-      ->check(cli::PositiveNumber)
-      ->capture_default_str();
-  app.add_option("--worker-wait", o->worker_wait,
-                 "seconds to wait for any worker before giving up (the run stays resumable)")
-      ->check(cli::PositiveNumber)
-      ->capture_default_str();
+  AddFarmOptions(app, &o->farm,
+                 "seconds to wait for any worker before giving up (the run stays resumable)");
 }
 
 std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveConfig* config) {
@@ -121,12 +90,12 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
                              "--overwrite",
                              "--trials",
                              "--aggregate",
-                             "--post-eval",
-                             "--post-eval-envelope",
-                             "--validation",
-                             "--validation-candidates",
                              "--pendulum.actuator-gain",
-                             "--pendulum.walls"})
+                             "--pendulum.walls",
+                             kRunEndOptionNames[0],
+                             kRunEndOptionNames[1],
+                             kRunEndOptionNames[2],
+                             kRunEndOptionNames[3]})
       if (app.count(name))
         throw std::invalid_argument(std::string(name) +
                                     " cannot be given with --resume: a resumed run keeps "
@@ -164,8 +133,8 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
     const bool main_job = app.count("--config") == 0 && app.count("--scenario") == 0;
     if (main_job) {
       if (app.count("--trials") == 0) o.trials = kMainJob.trials;
-      if (app.count("--post-eval") == 0) o.post_eval = kMainJob.post_eval;
-      if (app.count("--validation") == 0) o.validation = kMainJob.validation;
+      if (app.count("--post-eval") == 0) o.end.post_eval = kMainJob.post_eval;
+      if (app.count("--validation") == 0) o.end.validation = kMainJob.validation;
     }
     config->scenario = o.scenario.Config();
     config->scenario.envelope = o.envelope.Resolve(main_job ? kMainJob.envelope : "none");
@@ -181,13 +150,7 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
     config->ga.crossover_rate = o.crossover_rate;
     config->ga.trials = o.trials;
     config->ga.aggregate = ParseAggregate(o.aggregate);
-    config->post_eval = o.post_eval;
-    config->post_eval_envelope = !o.post_eval_envelope.empty()
-                                     ? sim::EnvelopePreset(o.post_eval_envelope)
-                                 : config->scenario.envelope.none() ? sim::EnvelopePreset("paper")
-                                                                    : config->scenario.envelope;
-    config->validation = o.validation;
-    config->validation_candidates = o.validation_candidates;
+    ApplyRunEndOptions(o.end, config);
     config->seed = o.seed;
     if (o.scenario.duration < 0) throw std::invalid_argument("--duration must not be negative");
     const std::string error = CheckEvolveConfig(*config);
@@ -218,10 +181,7 @@ FarmOptions FarmOptionsFor(const EvolveOptions& o, const EvolveConfig& config,
   farm.config = config.scenario;
   farm.population = config.ga.population;
   farm.trials = config.ga.trials;
-  farm.lease.job_deadline =
-      std::chrono::milliseconds(static_cast<std::int64_t>(o.job_deadline * 1000));
-  farm.no_worker_timeout =
-      std::chrono::milliseconds(static_cast<std::int64_t>(o.worker_wait * 1000));
+  ApplyFarmOptions(o.farm, &farm);
   return farm;
 }
 

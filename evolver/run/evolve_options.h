@@ -10,6 +10,7 @@
 #include "bus/lcm_bus.h"
 #include "evolver/evolve/evolution.h"
 #include "evolver/farm/farm_evaluator.h"
+#include "evolver/run/shared_options.h"
 #include "evolver/store/run_store.h"
 #include "sim/node/envelope_options.h"
 #include "sim/node/scenario_options.h"
@@ -30,15 +31,14 @@ inline constexpr MainJobSettings kMainJob{3, "paper", 50, 20};
 // ahhs-evolve's command line.
 struct EvolveOptions {
   sim::ScenarioOptions scenario;
-  std::string variant = "ahhs2", out_dir, resume_dir, arena = "direct", url = bus::kDefaultLcmUrl,
-              mutation_profile = "paper";
-  int hormones = 5, rules = 30, population = 20, generations = 200, elitism = 1, workers = -1,
-      trials = 1, post_eval = 0, validation = 0, validation_candidates = 10;
-  std::string aggregate = "mean", post_eval_envelope;
+  std::string variant = "ahhs2", out_dir, resume_dir, mutation_profile = "paper";
+  int hormones = 5, rules = 30, population = 20, generations = 200, elitism = 1, trials = 1;
+  std::string aggregate = "mean";
   sim::EnvelopeOptions envelope;
   double mutation_rate = 0.15, mutation_max_change = 0.1, crossover_rate = 0.05;
   std::uint64_t seed = 1;
-  double job_deadline = 300, worker_wait = 60;
+  FarmCliOptions farm;
+  RunEndCliOptions end;
   bool overwrite = false, show_config = false;
 };
 

@@ -24,11 +24,20 @@ def make_claims(configs, maxima, stat="best"):
     fitness (evolution speed, per-genome spread, neighbourhoods, controllers) are judged in the
     "best" pass only."""
     c = Claims(configs, maxima, stat)
-    pendulum(c)
-    damped(c)
-    fixed(c, maxima)
-    neighbourhoods(c)
-    controllers(c, configs)
+    # A study without a task has no claims of it (a configuration whose task is unknown yet
+    # could be any).
+    tasks = {x.task for x in configs}
+    if None in tasks:
+        tasks |= {"pendulum", "gait-fixed", "gait-damped"}
+    if "pendulum" in tasks:
+        pendulum(c)
+    if "gait-damped" in tasks:
+        damped(c)
+    if "gait-fixed" in tasks:
+        fixed(c, maxima)
+        neighbourhoods(c)
+    if tasks & {"gait-fixed", "gait-damped"}:
+        controllers(c, configs)
     return c.rows
 
 

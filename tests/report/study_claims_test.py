@@ -239,4 +239,17 @@ run.config = {"scenario": "pendulum", "pendulum": {"actuator_gain": 1.0, "walls"
 assert run.setting_label == "pendulum", run.setting_label
 run.config = {"scenario": "gait", "joints": "fixed"}
 assert run.setting_label == "gait-fixed", run.setting_label
+
+# A study has the claims of its tasks only: a gait-only plan (the robust study) says nothing of the
+# pendulum, and its planned damped configurations are "not run yet" before they have runs (their
+# task from the study's resolved configs); a configuration whose task is unknown could be any.
+gait_only = [config("gait-fixed-ahhs1-80", [0.9]),
+             sr.Config("gait-damped-ahhs2-30", 10, [], task="gait-damped"),
+             sr.Config("gait-damped-ahhs1-120", 10, [], task="gait-damped")]
+r = rows(gait_only)
+assert not any(claim.startswith("Pendulum") for claim in r), r
+assert r["Damped gait: AHHS2-30 and AHHS1-120 do not differ significantly"] == (
+    "not run yet (gait-damped-ahhs2-30, gait-damped-ahhs1-120)", "open"), r
+r = rows(gait_only + [sr.Config("pend2", 10, [])])
+assert r[BETTER] == ("not run yet (pendulum-ahhs2-15, pendulum-ahhs1-60)", "open"), r
 print("study claims: PASS")

@@ -40,9 +40,12 @@ ROBUSTNESS = 8
 
 
 class Config:
-    def __init__(self, name, planned, runs):
+    def __init__(self, name, planned, runs, task=None):
         self.name, self.planned, self.runs = name, planned, runs
         self.scenario_label = runs[0].scenario_label if runs else None
+        # pendulum, gait-fixed or gait-damped: of its runs, or of its resolved configuration in
+        # the study (STUDY/configs/NAME.json) before it has any; None when neither says
+        self.task = self.scenario_label or task
         self.setting_label = runs[0].setting_label if runs else None
         self.best = np.array([r.best_overall() for r in runs])
         self.robust = None  # per run: robust fitness of its best genome (None: a run has none)
@@ -80,8 +83,18 @@ def load_study(path):
         runs = [Run(os.path.join(path, name, f"seed-{k}"), prefer_summary=True)
                 for k in range(1, seeds + 1)
                 if os.path.isfile(os.path.join(path, name, f"seed-{k}", "summary.json"))]
-        configs.append(Config(name, seeds, runs))
+        configs.append(Config(name, seeds, runs, planned_task(path, name)))
     return plan.get("name", os.path.basename(path)), configs
+
+
+def planned_task(path, name):
+    """The task of a configuration from its resolved config in the study (None if absent)."""
+    try:
+        with open(os.path.join(path, "configs", name + ".json")) as f:
+            c = json.load(f)
+        return c["scenario"] + ("-" + c["joints"] if c["scenario"] == "gait" else "")
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
 
 
 def summary_of(run):
@@ -378,7 +391,7 @@ def write_results(args, name, configs, scenarios, maxima, claims):
                   f"{hormones:g} of {c.controllers[0]['hormones']} |")
         results["configs"][c.name] = {
             # (key "task": the name results.json has always had; docs/reference.md, "words")
-            "runs": len(c.runs), "planned": c.planned, "task": c.scenario_label,
+            "runs": len(c.runs), "planned": c.planned, "task": c.task,
             "best": [float(v) for v in c.best], "median": float(med),
             "within_80_percent": within, "speed": c.speed, "reached": c.reached,
             "robustness": c.robustness, "robust_source": c.robust_source,

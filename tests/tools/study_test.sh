@@ -92,6 +92,8 @@ kill -INT $pid; wait $pid; rc=$?
 grep -q "continue with: $S run --resume $tmp/B" $tmp/B.out || fail "Ctrl-C: $(cat $tmp/B.out)"
 "$S" status $tmp/B >$tmp/status || fail "status"
 grep -Eq "pend2/seed-1 +(stopped|complete)" $tmp/status || fail "status after Ctrl-C: $(cat $tmp/status)"
+grep -Eq "^time left here, one run at a time: [0-9.]+ (s|min|h) \(0 running, [0-9]+ waiting runs" $tmp/status ||
+  fail "status after Ctrl-C: no time left: $(cat $tmp/status)"
 # The printed command runs as printed.
 $(sed -n 's/^stopped; continue with: //p' $tmp/B.out) $opts >$tmp/B2.out 2>&1 || { cat $tmp/B2.out; fail "resume after Ctrl-C"; }
 same_study $tmp/A $tmp/B "Ctrl-C"
@@ -144,6 +146,7 @@ echo "== 5. status"
 "$S" status $tmp/A >$tmp/status || fail "status"
 grep -q "study tiny in $tmp/A: 4 of 4 runs complete, 0 running, 0 failed" $tmp/status || fail "$(cat $tmp/status)"
 grep -Eq "^pend1 +2/2" $tmp/status || fail "$(cat $tmp/status)"
+! grep -q "^time left" $tmp/status || fail "a complete study has time left: $(cat $tmp/status)"
 
 echo "== 6. report"
 if ! ci_tier_only "ahhs-study report"; then

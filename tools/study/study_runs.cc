@@ -308,6 +308,8 @@ int Status(const StudyDir& study) {
   std::vector<std::string> lines;
   int complete = 0, running = 0, failed = 0;
   double remaining_running = 0;
+  std::map<std::string, int> waiting;       // per configuration: runs not started or failed
+  std::map<std::string, double> projected;  // a running run's whole length, projected
   for (const auto& run : runs) {
     const RunState s = study.State(run);
     auto& [done, total] = per_config[run.config];
@@ -320,12 +322,15 @@ int Status(const StudyDir& study) {
     } else if (s.kind == RunStateKind::kRunning) {
       ++running;
       if (s.generations_done > 0) {
-        const double left = s.wall_time / s.generations_done * (s.generations - s.generations_done);
+        const double per_generation = s.wall_time / s.generations_done;
+        const double left = per_generation * (s.generations - s.generations_done);
         remaining_running += left;
+        projected[run.config] = per_generation * s.generations;
         eta = Seconds(left);
       }
-    } else if (s.kind == RunStateKind::kFailed) {
-      ++failed;
+    } else {
+      if (s.kind == RunStateKind::kFailed) ++failed;
+      ++waiting[run.config];
     }
     char best[32] = "-";
     if (s.best) std::snprintf(best, sizeof best, "%.6g", *s.best);
@@ -343,13 +348,36 @@ int Status(const StudyDir& study) {
               "best", "ETA");
   for (const auto& l : lines) std::printf("%s\n", l.c_str());
   std::printf("\n%-24s  %-9s  %s\n", "configuration", "complete", "mean run time (here)");
+  // The study's time left at this machine's pace, one run at a time: the running runs' ETAs,
+  // and each waiting run at its configuration's mean run time here (or, before one is complete,
+  // a running run's projected length); configurations with neither are counted apart.
+  double left = remaining_running;
+  int timed = 0, untimed = 0;
   for (const auto& config : study.plan().configs) {
     const auto& [done, total] = per_config[config.name];
     const auto& times = run_times[config.name];
     double mean = 0;
     for (double t : times) mean += t;
+    if (!times.empty()) mean /= static_cast<double>(times.size());
     std::printf("%-24s  %4d/%-4d  %s\n", config.name.c_str(), done, total,
-                times.empty() ? "-" : Seconds(mean / static_cast<double>(times.size())).c_str());
+                times.empty() ? "-" : Seconds(mean).c_str());
+    const int n = waiting[config.name];
+    const double each = !times.empty()                 ? mean
+                        : projected.count(config.name) ? projected[config.name]
+                                                       : 0;
+    if (each > 0) {
+      left += n * each;
+      timed += n;
+    } else {
+      untimed += n;
+    }
+  }
+  if (running + timed + untimed > 0) {
+    std::printf("\ntime left here, one run at a time: %s", Seconds(left).c_str());
+    std::printf(" (%d running, %d waiting runs at their configuration's run time here", running,
+                timed);
+    if (untimed > 0) std::printf("; %d more of configurations not timed here yet", untimed);
+    std::printf(")\n");
   }
   return 0;
 }

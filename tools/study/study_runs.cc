@@ -301,8 +301,8 @@ int Compact(const StudyDir& study) {
 
 int Status(const StudyDir& study) {
   const auto runs = study.Runs();
-  std::map<std::string, std::pair<int, int>> per_config;  // complete, total
-  std::map<std::string, std::vector<double>> run_times;
+  std::map<std::string, std::pair<int, int>> per_config;                 // complete, total
+  std::map<std::string, std::vector<double>> run_times, exported_times;  // here, elsewhere
   std::size_t width = 3;
   for (const auto& run : runs) width = std::max(width, run.Name().size());
   std::vector<std::string> lines;
@@ -318,7 +318,7 @@ int Status(const StudyDir& study) {
     if (s.kind == RunStateKind::kComplete) {
       ++done;
       ++complete;
-      if (!s.exported_only) run_times[run.config].push_back(s.wall_time);
+      (s.exported_only ? exported_times : run_times)[run.config].push_back(s.wall_time);
     } else if (s.kind == RunStateKind::kRunning) {
       ++running;
       if (s.generations_done > 0) {
@@ -350,33 +350,40 @@ int Status(const StudyDir& study) {
   std::printf("\n%-24s  %-9s  %s\n", "configuration", "complete", "mean run time (here)");
   // The study's time left at this machine's pace, one run at a time: the running runs' ETAs,
   // and each waiting run at its configuration's mean run time here (or, before one is complete,
-  // a running run's projected length); configurations with neither are counted apart.
+  // a running run's projected length, or else the mean of its exported runs, made elsewhere);
+  // configurations with none of these are counted apart.
+  auto mean_of = [](const std::vector<double>& v) {
+    double m = 0;
+    for (double t : v) m += t;
+    return v.empty() ? 0 : m / static_cast<double>(v.size());
+  };
   double left = remaining_running;
-  int timed = 0, untimed = 0;
+  int timed = 0, elsewhere = 0, untimed = 0;
   for (const auto& config : study.plan().configs) {
     const auto& [done, total] = per_config[config.name];
     const auto& times = run_times[config.name];
-    double mean = 0;
-    for (double t : times) mean += t;
-    if (!times.empty()) mean /= static_cast<double>(times.size());
+    const double mean = mean_of(times);
     std::printf("%-24s  %4d/%-4d  %s\n", config.name.c_str(), done, total,
                 times.empty() ? "-" : Seconds(mean).c_str());
     const int n = waiting[config.name];
-    const double each = !times.empty()                 ? mean
-                        : projected.count(config.name) ? projected[config.name]
-                                                       : 0;
-    if (each > 0) {
-      left += n * each;
+    if (!times.empty() || projected.count(config.name)) {
+      left += n * (!times.empty() ? mean : projected[config.name]);
       timed += n;
+    } else if (!exported_times[config.name].empty()) {
+      left += n * mean_of(exported_times[config.name]);
+      elsewhere += n;
     } else {
       untimed += n;
     }
   }
-  if (running + timed + untimed > 0) {
+  if (running + timed + elsewhere + untimed > 0) {
     std::printf("\ntime left here, one run at a time: %s", Seconds(left).c_str());
     std::printf(" (%d running, %d waiting runs at their configuration's run time here", running,
                 timed);
-    if (untimed > 0) std::printf("; %d more of configurations not timed here yet", untimed);
+    if (elsewhere > 0)
+      std::printf(", %d at the run time of their configuration's exported runs (made elsewhere)",
+                  elsewhere);
+    if (untimed > 0) std::printf("; %d more of configurations not timed yet", untimed);
     std::printf(")\n");
   }
   return 0;

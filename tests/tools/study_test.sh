@@ -109,6 +109,9 @@ mkdir $tmp/other; echo x >$tmp/other/file
 "$S" export $tmp/A $tmp/other >$tmp/out 2>&1; [[ $? == 2 ]] && grep -q "is not a study export" $tmp/out || fail "export into a foreign directory: $(cat $tmp/out)"
 "$S" status $tmp/E | grep -Eq "pend1/seed-2 +exported +$gens/$gens" || fail "status of an export: $($S status $tmp/E)"
 rm -r $tmp/E/pend2/seed-2
+"$S" status $tmp/E >$tmp/status || fail "status of an export with a run missing"
+grep -Eq "^time left here, one run at a time: .*1 at the run time of their configuration's exported runs \(made elsewhere\)" $tmp/status ||
+  fail "time left from exported runs: $(cat $tmp/status)"
 "$S" run $tmp/plan.toml --out $tmp/C $opts --from-export $tmp/E >$tmp/C.out 2>&1 || { cat $tmp/C.out; fail "study from an export"; }
 grep -q "3 complete runs taken" $tmp/C.out && grep -q "3 of 4 runs complete, 1 to run" $tmp/C.out ||
   fail "from export: $(cat $tmp/C.out)"

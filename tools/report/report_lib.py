@@ -31,6 +31,11 @@ class UsageError(Exception):
 # Reading runs
 
 
+def scenario_label_of(config):
+    """pendulum, gait-damped or gait-fixed, of a run's resolved configuration."""
+    return config["scenario"] + ("-" + config["joints"] if config["scenario"] == "gait" else "")
+
+
 class Run:
     def __init__(self, path, prefer_summary=False):
         """prefer_summary: a complete run of a study is read from its summary and exports
@@ -106,8 +111,7 @@ class Run:
     def scenario_label(self):
         """The scenario with the gait's docking: pendulum, gait-damped or gait-fixed. Runs of
         different ones never share a fitness axis."""
-        c = self.config
-        return c["scenario"] + ("-" + c["joints"] if c["scenario"] == "gait" else "")
+        return scenario_label_of(self.config)
 
     @property
     def setting_label(self):

@@ -31,7 +31,7 @@ import numpy as np
 
 from claims_lib import VERDICTS, fmt, merge_claims
 from report_lib import (ReportError, Run, UsageError, box_figure, find_bin, prepare_out,
-                        rule_edges, rule_parts, run_replay)
+                        rule_edges, rule_parts, run_replay, scenario_label_of)
 from run_report import report_neighbourhood, report_runs
 
 SELDOM = 0.01  # a rule part active in fewer ticks than this triggers "seldom"
@@ -91,8 +91,7 @@ def planned_task(path, name):
     """The task of a configuration from its resolved config in the study (None if absent)."""
     try:
         with open(os.path.join(path, "configs", name + ".json")) as f:
-            c = json.load(f)
-        return c["scenario"] + ("-" + c["joints"] if c["scenario"] == "gait" else "")
+            return scenario_label_of(json.load(f))
     except (OSError, ValueError, KeyError, TypeError):
         return None
 

@@ -736,7 +736,7 @@ void ChainStep::SolveRows() {
     findex_b_[static_cast<std::size_t>(i)] = r.findex;
   }
   if (nb > 0 && !lcp_.Solve(nb, schur_.data(), rhs_b_.data(), lo_b_.data(), hi_b_.data(),
-                            findex_b_.data(), x))
+                            findex_b_.data(), x, params_.warm_start ? &lcp_start_ : nullptr))
     ++lcp_failures_;
   last_pivots_ = lcp_.last_pivots();
   // lambda_U = L^-T D^-1 (z - Y lambda_B).

@@ -43,6 +43,9 @@ class ChainStep {
     double rest_linear_speed = 0;   // m/s
     double rest_angular_speed = 0;  // rad/s
     int rest_steps = 0;             // 0: never rest
+    // Start each step's bounded rows from the states the last step's ended with, when the rows
+    // are as many (sim/core/box_lcp.h): the same solution in other rounding, far fewer pivots.
+    bool warm_start = false;
   };
   ChainStep(dWorldID world, Params params);
 
@@ -69,6 +72,7 @@ class ChainStep {
   int last_bilateral_rows() const { return last_nu_; }
   int last_bounded_rows() const { return last_nb_; }
   int last_pivots() const { return last_pivots_; }
+  int last_block_rows() const { return lcp_.last_block_rows(); }
   std::int64_t lcp_failures() const { return lcp_failures_; }
 
  private:
@@ -137,6 +141,7 @@ class ChainStep {
   std::vector<double> schur_, rhs_b_, lo_b_, hi_b_, work_;
   std::vector<int> findex_b_, first_u_of_body_, body_start_, body_rows_;
   BoxLcp lcp_;
+  BoxLcpStart lcp_start_;
   int last_nu_ = 0, last_nb_ = 0, last_pivots_ = 0;
   std::int64_t lcp_failures_ = 0;
 };

@@ -12,10 +12,12 @@ namespace ahhs::sim {
 // takes an exported run only when it was made with the same physics (tools/study), since the
 // run store cannot tell otherwise. CHANGELOG.md says what each change was.
 inline constexpr const char* kPendulumPhysicsVersion = "2026-12-01";
-inline constexpr const char* kGaitFixedPhysicsVersion = "2026-12-04";
-inline constexpr const char* kGaitDampedPhysicsVersion = "2026-12-04";
-// Earlier gait physics this build still replays (sim::ReplayablePhysics): the same model
-// solved by ODE's dWorldStep instead of the chain solver. The first study was made with them.
+inline constexpr const char* kGaitFixedPhysicsVersion = "2026-12-05";
+inline constexpr const char* kGaitDampedPhysicsVersion = "2026-12-05";
+// Earlier gait physics this build still replays (sim::ReplayablePhysics), all the same model:
+// the chain solver without its warm start (both dockings), and ODE's dWorldStep instead of the
+// chain solver (the first study was made with those).
+inline constexpr const char* kGaitChainColdPhysicsVersion = "2026-12-04";
 inline constexpr const char* kGaitFixedDantzigPhysicsVersion = "2026-12-01";
 inline constexpr const char* kGaitDampedDantzigPhysicsVersion = "2026-12-01.2";
 
@@ -23,8 +25,9 @@ inline constexpr const char* kGaitDampedDantzigPhysicsVersion = "2026-12-01.2";
 inline std::string PhysicsVersionLine() {
   return std::string("physics: pendulum ") + kPendulumPhysicsVersion + ", gait fixed " +
          kGaitFixedPhysicsVersion + ", gait damped " + kGaitDampedPhysicsVersion +
-         " (replays gait fixed " + kGaitFixedDantzigPhysicsVersion + ", gait damped " +
-         kGaitDampedDantzigPhysicsVersion + ")";
+         " (replays gait " + kGaitChainColdPhysicsVersion + ", gait fixed " +
+         kGaitFixedDantzigPhysicsVersion + ", gait damped " + kGaitDampedDantzigPhysicsVersion +
+         ")";
 }
 
 struct PendulumConstants {
@@ -72,6 +75,8 @@ struct GaitConstants {
   // dWorldStep itself (the physics of 2026-12-01); kQuickStep, with the settings below, is kept
   // to compare against.
   GaitSolver solver = GaitSolver::kChain;
+  // kChain: start each step's bounded rows from where the last step's ended (ChainStep::Params).
+  bool chain_warm_start = true;
   int solver_iterations = 16;  // dWorldSetQuickStepNumIterations
   // Successive over-relaxation of the quick-step solver (dWorldSetQuickStepW).
   double solver_relaxation_fixed = 1.3;

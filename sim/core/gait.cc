@@ -272,6 +272,7 @@ void GaitScenario::Build() {
     rest.rest_linear_speed = k_.rest_linear_speed;
     rest.rest_angular_speed = k_.rest_angular_speed;
     rest.rest_steps = rest_steps;
+    rest.warm_start = k_.chain_warm_start;
     chain_ = std::make_unique<ChainStep>(world_, rest);
     for (const Module& m : modules_) {  // bodies in chain order, each once
       if (&m == &modules_.front() || !rigid) chain_->AddBody(m.front.body);

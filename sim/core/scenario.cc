@@ -44,6 +44,7 @@ const char* PhysicsVersion(ScenarioKind kind, DockingKind docking) {
 
 std::vector<std::string> ReplayablePhysics(ScenarioKind kind, DockingKind docking) {
   std::vector<std::string> versions{PhysicsVersion(kind, docking)};
+  if (kind == ScenarioKind::kGait) versions.emplace_back(kGaitChainColdPhysicsVersion);
   if (kind == ScenarioKind::kGait)
     versions.emplace_back(docking == DockingKind::kDamped ? kGaitDampedDantzigPhysicsVersion
                                                           : kGaitFixedDantzigPhysicsVersion);
@@ -124,7 +125,8 @@ std::unique_ptr<Scenario> MakeScenario(const ScenarioConfig& config) {
   GaitConstants k;
   if (config.physics_step > 0) k.physics_step_fixed = k.physics_step_damped = config.physics_step;
   k.friction *= config.friction_scale;
-  // The earlier physics: the same model solved by dWorldStep.
+  // The earlier physics: the same model without the warm start, or solved by dWorldStep.
+  if (config.physics == kGaitChainColdPhysicsVersion) k.chain_warm_start = false;
   if (config.physics == (config.docking == DockingKind::kDamped ? kGaitDampedDantzigPhysicsVersion
                                                                 : kGaitFixedDantzigPhysicsVersion))
     k.solver = GaitSolver::kDantzig;

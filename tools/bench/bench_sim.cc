@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "modules/core/random.h"
+#include "sim/core/constants.h"
 #include "sim/core/drive.h"
 #include "sim/core/gait.h"
 #include "sim/core/scenario.h"
@@ -84,9 +85,10 @@ cli::App* SimBench::Add(cli::App& app) {
       ->check(cli::Range(1, 1000))
       ->capture_default_str();
   sub->add_option("--solver", solver,
-                  "the gait's solver: chain (this build's physics, sim/core/chain_step.h) or ode "
-                  "(ODE's dWorldStep, the same model, the physics of 2026-12-01)")
-      ->check(cli::IsMember({"ode", "chain"}))
+                  "the gait's solver: chain (this build's physics, sim/core/chain_step.h), "
+                  "chain-cold (without its warm start, the physics of 2026-12-04) or ode (ODE's "
+                  "dWorldStep, the same model, the physics of 2026-12-01)")
+      ->check(cli::IsMember({"ode", "chain", "chain-cold"}))
       ->capture_default_str();
   return sub;
 }
@@ -101,7 +103,8 @@ void SimBench::Run() const {
     for (as::DockingKind docking : {as::DockingKind::kDamped, as::DockingKind::kFixed}) {
       as::ScenarioConfig gait;
       gait.docking = docking;
-      BenchSim(gait, drive, repeats, seed, seeds, solver == "chain");
+      if (solver == "chain-cold") gait.physics = as::kGaitChainColdPhysicsVersion;
+      BenchSim(gait, drive, repeats, seed, seeds, solver != "ode");
     }
   }
   as::ScenarioConfig pendulum;

@@ -15,7 +15,10 @@ void AddReplayOptions(cli::App& app, ReplayOptions* o) {
                  "individual of --generation (default: that generation's best)");
   app.add_option("--genome", o->genome_file, "a genome file instead of a run")
       ->check(cli::ExistingFile);
-  o->scenario.Add(app, "with --genome: ", "simulated seconds (0: the scenario's)");
+  // A genome file that names its run's configuration replays in that run's scenario; these
+  // options override it.
+  o->scenario.Add(app, "with --genome (default: its run's, if the file names it): ",
+                  "simulated seconds (0: the scenario's)");
   app.add_option("--seed", o->seed,
                  "evaluation seed, 0 to 2^64-1 (default: the stored one: the run's, or the genome "
                  "file's; else 1)")

@@ -76,6 +76,20 @@ ReplayTarget ResolveTarget(const cli::App& app, const ReplayOptions& o,
     t.spec.genome = am::LoadGenomeFile(o.genome_file, &meta);
     if (meta.is_object() && meta.contains("physics") && meta["physics"].is_string())
       t.stored_physics = meta["physics"].get<std::string>();
+    // A genome file that names its run's configuration (meta.config, as best.json keeps it)
+    // replays in that run's scenario (task, docking, modules, duration) unless options give it.
+    if (meta.is_object() && meta.contains("config") && meta["config"].is_object()) {
+      ahhs::sim::ScenarioConfig run;
+      try {
+        run = ev::ConfigFromJson(meta["config"]).scenario;
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(o.genome_file + ": meta.config: " + e.what());
+      }
+      if (!app.count("--scenario")) t.spec.config.kind = run.kind;
+      if (!app.count("--docking") && !app.count("--joints")) t.spec.config.docking = run.docking;
+      if (!app.count("--modules")) t.spec.config.num_modules = run.num_modules;
+      if (!app.count("--duration")) t.spec.config.duration = run.duration;
+    }
     const std::string fit = ep::CheckGenomeFits(t.spec.genome, t.spec.config);
     if (!fit.empty()) throw std::invalid_argument(o.genome_file + ": " + fit);
     t.spec.seed = o.seed;

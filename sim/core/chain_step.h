@@ -72,7 +72,6 @@ class ChainStep {
   int last_bilateral_rows() const { return last_nu_; }
   int last_bounded_rows() const { return last_nb_; }
   int last_pivots() const { return last_pivots_; }
-  int last_block_rows() const { return lcp_.last_block_rows(); }
   std::int64_t lcp_failures() const { return lcp_failures_; }
 
  private:

@@ -44,10 +44,11 @@ const char* PhysicsVersion(ScenarioKind kind, DockingKind docking) {
 
 std::vector<std::string> ReplayablePhysics(ScenarioKind kind, DockingKind docking) {
   std::vector<std::string> versions{PhysicsVersion(kind, docking)};
-  if (kind == ScenarioKind::kGait) versions.emplace_back(kGaitChainColdPhysicsVersion);
-  if (kind == ScenarioKind::kGait)
+  if (kind == ScenarioKind::kGait) {
+    versions.emplace_back(kGaitChainColdPhysicsVersion);
     versions.emplace_back(docking == DockingKind::kDamped ? kGaitDampedDantzigPhysicsVersion
                                                           : kGaitFixedDantzigPhysicsVersion);
+  }
   return versions;
 }
 

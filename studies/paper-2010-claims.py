@@ -70,7 +70,7 @@ def damped(c):
     if not c.missing(claim, paper, a, b):
         over = {n: float(np.mean(c.values(n) > OVER_THE_WALL)) for n in (a, b)}
         ours = "; ".join(f"{label(n)}: median {c.median(n):.3f}, {pct(over[n])} of runs over "
-                         "the wall" for n in (a, b))
+                         "the wall" for n in (a, b)) + c.success_note((a, b), label)
         low = [label(n) for n in (a, b) if c.median(n) <= OVER_THE_WALL]
         c.add(claim, paper, ours, "reproduced" if not low else
               "differs: " + " and ".join(low) + " at or before the wall (median <= 1)", (a, b))
@@ -79,7 +79,7 @@ def damped(c):
     if not c.missing(claim, paper, a, b):
         verdict, p = c.no_difference(a, b, "AHHS2-30", "AHHS1-120")
         c.add(claim, paper, f"medians {c.median(a):.3f} (AHHS2-30) vs {c.median(b):.3f} "
-              f"(AHHS1-120), p = {fmt(p)}", verdict, (a, b))
+              f"(AHHS1-120), p = {fmt(p)}" + c.success_note((a, b), label), verdict, (a, b))
     # "The behaviors evolved by AHHS1 show high variance depending on the deterministic chaos":
     # one controller's fitness from episode to episode, not the spread of the runs' bests.
     claim = ("Damped gait: an AHHS1 controller's fitness varies more from episode to episode "
@@ -125,7 +125,7 @@ def fixed(c, maxima):
                         f"p = {fmt(p)}")
             if verdict != "reproduced":
                 parts.append(f"against {label(h)}: {verdict}")
-        c.add(claim, paper, "medians " + "; ".join(ours),
+        c.add(claim, paper, "medians " + "; ".join(ours) + c.success_note((low, *high), label),
               "reproduced" if not parts else "differs (" + "; ".join(parts) + ")",
               (low, *high))
     claim = "Fixed gait: no other pair of settings differs significantly"
@@ -149,7 +149,8 @@ def fixed(c, maxima):
         note = (f"; yet AHHS2-20 holds the highest run ({float(np.max(c.values(bad))):.3f})"
                 if top_run == bad else "")
         c.add(claim, paper, "medians " + ", ".join(f"{label(n)} {m:.3f}"
-                                                   for n, m in medians.items()) + note,
+                                                   for n, m in medians.items()) + note +
+              c.success_note(tuple(present), label),
               "reproduced (in the median)" if lowest == bad else
               f"differs: {label(lowest)} is lowest", tuple(present))
     claim = "Fixed gait: AHHS2-20 evolves slowest (runs reaching 75 % of the maximum, and when)"

@@ -140,6 +140,18 @@ assert "medians 0.6" in r[SAME][0] and "vs 2.5" in r[SAME][0], r[SAME]
 assert "medians 0.5" in rr[SAME][0] and "vs 0.3" in rr[SAME][0], rr[SAME]
 assert r[HIGH][1] == "differs: AHHS2-30 at or before the wall (median <= 1) (n = 6, 6)", r[HIGH]
 assert rr[HIGH][1].startswith("differs: AHHS2-30 and AHHS1-120 at or before the wall"), rr[HIGH]
+# With post-evaluations (study_report.Config.success), the robust pass also says how many held-out
+# episodes got over the wall: a median between two humps moves with sampling, this share does not.
+assert "held-out" not in rr[SAME][0], rr[SAME]
+damped[0].success = [0.5, 0.0, 0.25, 0.0, 0.0, 0.75]
+damped[1].success = [0.0] * 6
+rr = rows(damped, "robust")
+assert rr[SAME][0].endswith("; held-out episodes over the wall: AHHS2-30 25 % (3 of 6 runs), "
+                            "AHHS1-120 0 % (0 of 6 runs)"), rr[SAME]
+assert rr[HIGH][0].endswith("AHHS1-120 0 % (0 of 6 runs)"), rr[HIGH]
+assert "held-out" not in rows(damped)[SAME][0]  # the best pass has no held-out episodes
+damped[1].success = None  # one configuration without post-evaluations: no share at all
+assert "held-out" not in rows(damped, "robust")[SAME][0]
 pend = [config("pendulum-ahhs2-15", bests(0.3), robust=np.array(bests(0.6))),
         config("pendulum-ahhs1-60", bests(0.6), robust=np.array(bests(0.3)))]
 r, rr = rows(pend), rows(pend, "robust")
@@ -239,6 +251,30 @@ run.config = {"scenario": "pendulum", "pendulum": {"actuator_gain": 1.0, "walls"
 assert run.setting_label == "pendulum", run.setting_label
 run.config = {"scenario": "gait", "joints": "fixed"}
 assert run.setting_label == "gait-fixed", run.setting_label
+
+# A run's held-out successes from its summary.json: the share of its valid episodes that succeeded
+# (a failed episode has no fitness and does not count), and the configuration's table cell.
+import json  # noqa: E402
+import tempfile  # noqa: E402
+with tempfile.TemporaryDirectory() as d:
+    episodes = [{"fitness": 0.8, "succeeded": False}, {"fitness": 1.4, "succeeded": True},
+                {"fitness": None, "succeeded": False}, {"fitness": 0.7, "succeeded": False},
+                {"fitness": 1.2, "succeeded": True}]
+    with open(os.path.join(d, "summary.json"), "w") as f:
+        json.dump({"post_eval": {"envelope": "paper", "per_episode": episodes}}, f)
+    run = sr.Run.__new__(sr.Run)
+    run.path = d
+    post = sr.post_eval_of(run)
+    assert post["episodes"] == 4 and post["success_share"] == 0.5 and post["median"] == 1.0, post
+    c = config("gait-fixed-ahhs1-80", [1.0] * 3)
+    c.runs = [run] * 3
+    sr.robust_fitness(c)
+    assert c.success == [0.5] * 3 and list(c.robust) == [1.0] * 3, (c.success, c.robust)
+    assert sr.success_cell(c) == "50% (3 of 3)", sr.success_cell(c)
+    c.success = [0.0, 0.1, 0.0]
+    assert sr.success_cell(c) == "3% (1 of 3)", sr.success_cell(c)
+    c.success = None
+    assert sr.success_cell(c) == "-"
 
 # A study has the claims of its tasks only: a gait-only plan (the robust study) says nothing of the
 # pendulum, and its planned damped configurations are "not run yet" before they have runs (their

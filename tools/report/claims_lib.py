@@ -128,6 +128,19 @@ class Claims:
     def iqr(self, name):
         return float(np.subtract(*np.percentile(self.values(name), [75, 25])))
 
+    def success_note(self, names, label, what="over the wall"):
+        """In the robust pass, when every configuration named has its runs' held-out successes
+        (study_report.Config.success): "; held-out episodes over the wall: AHHS2-30 40 % (7 of
+        10 runs), ..."; else "". Where held-out fitness has two humps, a median between them
+        moves with sampling and this share does not."""
+        cs = [self.get(n) for n in names]
+        if self.stat == "best" or any(c is None or getattr(c, "success", None) is None
+                                      for c in cs):
+            return ""
+        return f"; held-out episodes {what}: " + ", ".join(
+            f"{label(n)} {pct(float(np.mean(c.success)))} ({sum(x > 0 for x in c.success)} of "
+            f"{len(c.success)} runs)" for n, c in zip(names, cs))
+
     def not_fitness(self, claim, paper):
         """For a claim that is not about runs' fitness: True (and an empty row) unless this is
         the "best" pass, which judges it."""

@@ -52,6 +52,11 @@ class Config:
         self.robust_source = ""  # what the robust fitness is the median of
         self.spread = None  # per run: interquartile range of its best genome's robust episodes
         self.spread_source = ""
+        # per run: the share of its best genome's held-out episodes that succeed (the gait: over
+        # the wall; the pendulum: the bob above the pivot in >= 20 % of ticks), None without a
+        # post-evaluation for every run. A two-humped distribution's median moves with sampling;
+        # this share does not (docs/findings.md, "The warm-started chain solver ...").
+        self.success = None
         self.controllers = []  # per run: rule and hormone use of its best genome
         # per run: the generation reaching 75 % of its setting's maximum, or its length
         self.speed = []
@@ -146,18 +151,20 @@ def iqr(values):
 
 def post_eval_of(run):
     """A run's post-evaluation (ahhs-evolve --post-eval: held-out episodes of its best genome)
-    from its summary: {"median", "iqr", "episodes"}, or None when it has none."""
+    from its summary: {"median", "iqr", "episodes", "envelope", "success_share"}, or None when it
+    has none."""
     if not os.path.isfile(os.path.join(run.path, "summary.json")):
         return None
     post = summary_of(run).get("post_eval")
     if not post or not post.get("per_episode"):
         return None
-    values = [float(e["fitness"]) for e in post["per_episode"]
-              if isinstance(e.get("fitness"), (int, float))]
+    valid = [e for e in post["per_episode"] if isinstance(e.get("fitness"), (int, float))]
+    values = [float(e["fitness"]) for e in valid]
     if len(values) < 2:
         return None
     return {"median": float(np.median(values)), "iqr": iqr(values), "episodes": len(values),
-            "envelope": post.get("envelope", "")}
+            "envelope": post.get("envelope", ""),
+            "success_share": float(np.mean([bool(e.get("succeeded")) for e in valid]))}
 
 
 def robust_fitness(config):
@@ -167,6 +174,7 @@ def robust_fitness(config):
     if post and all(p is not None for p in post):
         config.robust = np.array([p["median"] for p in post])
         config.spread = [p["iqr"] for p in post]
+        config.success = [p["success_share"] for p in post]
         episodes = sorted({p["episodes"] for p in post})
         config.robust_source = config.spread_source = (
             f"{'-'.join(map(str, episodes))} held-out episodes (envelope {post[0]['envelope']})")
@@ -324,6 +332,14 @@ def reaching(c):
     return f"{len(gens)} of {len(c.speed)}" + (f" ({np.median(gens):g})" if gens else "")
 
 
+def success_cell(c):
+    """"14 % (1 of 3)": the share of all the runs' held-out episodes that succeed (each run
+    post-evaluated on as many), and how many runs have any; "-" without post-evaluations."""
+    if c.success is None:
+        return "-"
+    return f"{np.mean(c.success):.0%} ({sum(x > 0 for x in c.success)} of {len(c.success)})"
+
+
 def robust_sources(configs):
     """What each configuration's robust fitness is the median of, in words."""
     sources = OrderedDict()
@@ -361,21 +377,26 @@ def write_results(args, name, configs, scenarios, maxima, claims):
            "the configuration's best genome replayed with the friction scaled 0.975-1.025 (8 "
            "replays, median). Robust fitness of the runs' bests: " + robust_sources(configs) +
            "; an evolved gait best is usually far above "
-           "it (docs/findings.md, \"Physics step and deterministic chaos\"). Rules: share of the "
+           "it (docs/findings.md, \"Physics step and deterministic chaos\"). Held-out episodes "
+           "succeeding (post-evaluated runs only): over the wall (gait) or the bob above the "
+           "pivot in at least 20 % of ticks (pendulum), the mean of the runs' shares, and how "
+           "many runs have any; where a best's held-out fitness has two humps (at the wall or "
+           "over it), its median moves with sampling and this share does not. Rules: share of the "
            "rules of the runs' best genomes that "
            "never or seldom (< 1 % of ticks) trigger; hormones: touched by a rule part active in "
            ">= 1 % of ticks (median over runs).", "",
            "| configuration | runs | best fitness: median (quartiles) | max | robust median of the max | "
            "robust fitness of the runs' bests: median (quartiles) | "
+           "held-out episodes succeeding: all runs' (runs with any) | "
            "within 80 % of its setting's maximum | runs reaching 75 % of it (median generation of those) | "
            "rules never/seldom | "
            "hormones used |",
-           "|---|---|---|---|---|---|---|---|---|---|"]
+           "|---|---|---|---|---|---|---|---|---|---|---|"]
     results = {"study": name, "complete_runs": complete, "planned_runs": planned,
                "replay_differs": differ, "maxima": maxima, "configs": {}, "claims": claims}
     for c in configs:
         if not c.runs:
-            md.append(f"| {c.name} | 0 of {c.planned} | not run yet | | | | | | | |")
+            md.append(f"| {c.name} | 0 of {c.planned} | not run yet | | | | | | | | |")
             continue
         q1, med, q3 = np.percentile(c.best, [25, 50, 75])
         within = float(np.mean(c.best >= 0.8 * maxima[c.setting_label]))
@@ -385,7 +406,7 @@ def write_results(args, name, configs, scenarios, maxima, claims):
             *np.percentile(c.robust, [25, 50, 75]))
         md.append(f"| {c.name} | {len(c.runs)} of {c.planned} | {med:.3f} ({q1:.3f} / {q3:.3f}) | "
                   f"{np.max(c.best):.3f} | {fmt(c.robustness['median'])} | {robust} | "
-                  f"{within:.0%} | "
+                  f"{success_cell(c)} | {within:.0%} | "
                   f"{reaching(c)} | {quiet:.0%} | "
                   f"{hormones:g} of {c.controllers[0]['hormones']} |")
         results["configs"][c.name] = {
@@ -395,7 +416,7 @@ def write_results(args, name, configs, scenarios, maxima, claims):
             "within_80_percent": within, "speed": c.speed, "reached": c.reached,
             "robustness": c.robustness, "robust_source": c.robust_source,
             "robust": None if c.robust is None else [float(v) for v in c.robust],
-            "spread": c.spread,
+            "spread": c.spread, "success": c.success,
             "robustness_runs": c.robustness_runs,
             "neighbourhood": c.neighbourhood, "controllers": c.controllers}
     md += ["", "## Figures", ""]

@@ -5,10 +5,11 @@
   ahhs-report neighbourhood GENOME_OR_RUN_DIR [--mutants 35] -o OUT_DIR [scenario options]
   ahhs-report study STUDY_DIR_OR_EXPORT -o OUT_DIR (study_report.py)
   ahhs-report steps GENOME_OR_RUN... -o OUT_DIR (step_report.py)
+  ahhs-report compare STUDY_REPORT_DIR... -o OUT_DIR (compare_report.py)
 
 This file only parses the command line and dispatches. The modules form a stack without cycles:
 report_lib (runs, statistics, figures, replays) < run_report (runs, neighbourhood), claims_lib
-(how a claim is judged) < study_report, step_report < ahhs_report. A study's claims live beside
+(how a claim is judged) < study_report, step_report, compare_report < ahhs_report. A study's claims live beside
 its plan (studies/paper-2010-claims.py).
 
 Reads each run's SQLite database directly (Python's sqlite3), replays the best genome of the
@@ -20,6 +21,7 @@ import argparse
 import os
 import sys
 
+import compare_report
 import report_lib
 import step_report
 import study_report
@@ -38,6 +40,8 @@ def main(argv):
         return study_report.main(argv[1:])
     if argv and argv[0] == "steps":
         return step_report.main(argv[1:])
+    if argv and argv[0] == "compare":
+        return compare_report.main(argv[1:])
     if argv and argv[0] == "neighbourhood":
         p = argparse.ArgumentParser(prog="ahhs-report neighbourhood",
                                     description="fitness of single mutants of a genome")
@@ -64,7 +68,8 @@ def main(argv):
                "mutation neighbourhood of a genome (ahhs-report neighbourhood --help); "
                "ahhs-report study STUDY_DIR -o DIR: a study against the paper's claims; "
                "ahhs-report steps GENOME... -o DIR: the gait's physics step judged by "
-               "post-evaluated distributions")
+               "post-evaluated distributions; ahhs-report compare REPORT_DIR... -o DIR: the "
+               "paper's claims side by side across study reports")
     p.add_argument("runs", nargs="+",
                    help="run directories, or runs of a study export (ahhs-study export)")
     p.add_argument("-o", "--out", required=True, help="output directory")

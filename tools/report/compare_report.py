@@ -8,7 +8,8 @@ and writes into OUT_DIR:
   compare.json  the same rows
 Nothing is recomputed: every verdict is the one its study's report gave (with its n), so the
 tables can be rebuilt from the studies' exports alone (`ahhs-study report EXPORT -o DIR` each,
-then this). A claim that a study does not make is "-" in its columns. A pendulum-choices study
+then this). A claim that a study does not make is "-" in its columns; a study that makes none of
+a task's claims has no columns in that task's table. A pendulum-choices study
 names the paper's setting "task defaults"; its claims in that setting share the paper's rows.
 """
 import argparse
@@ -93,17 +94,19 @@ def write_compare(out, reports, labels, tasks):
         rows = tasks.get(key)
         if not rows:
             continue
-        # A study's robust column only where it judged one of this task's claims twice.
+        # A study's columns only where it judges one of this task's claims, its robust column
+        # only where it judged one twice.
+        judged = [any(r["verdicts"][k][0] is not None for r in rows) for k in range(len(labels))]
         robust = [any(r["verdicts"][k][1] is not None for r in rows) for k in range(len(labels))]
         head = ["claim", "the paper"]
-        for label, twice in zip(labels, robust):
-            head += [f"{label}: best"] + ([f"{label}: robust"] if twice else [])
+        for label, once, twice in zip(labels, judged, robust):
+            head += ([f"{label}: best"] if once else []) + ([f"{label}: robust"] if twice else [])
         md += ["", f"## {headings[key]}", "", "| " + " | ".join(head) + " |",
                "|" + "---|" * len(head)]
         for r in rows:
             cells = [cell(r["claim"]), cell(r["paper"])]
-            for (best, rob), twice in zip(r["verdicts"], robust):
-                cells += [cell(best)] + ([cell(rob)] if twice else [])
+            for (best, rob), once, twice in zip(r["verdicts"], judged, robust):
+                cells += ([cell(best)] if once else []) + ([cell(rob)] if twice else [])
             md.append("| " + " | ".join(cells) + " |")
     with open(os.path.join(out, "compare.md"), "w") as f:
         f.write("\n".join(md) + "\n")

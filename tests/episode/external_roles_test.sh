@@ -133,8 +133,9 @@ grep -q "ticks without a state at the fitness monitor: 0$" $tmp/phys.out ||
   fail "a tick's state missed: $(cat $tmp/phys.out)"
 grep -q "put the organism at its start" $tmp/server.out || fail "server did not ask the operator: $(cat $tmp/server.out)"
 grep -q "finished after 40 ticks" $tmp/server.out || fail "server: $(cat $tmp/server.out)"
-# As in section 8: a real-time episode does not wait for the last ticks' commands (seen: 39 of 40
-# on two of the three boards, in CI's ASan pass); a floor on the count, the rest exact.
+# As in section 8 (tests/lib.sh): a real-time episode does not wait for the last ticks' commands
+# (seen: 39 of 40 on two of the three boards, in CI's ASan pass); a floor on the count, the rest
+# exact.
 [[ $(grep -Ec '40 readings sent, (3[6-9]|40) commands applied, 0 dropped, 0 readings of others' $tmp/PHYS.roles) == 3 ]] ||
   fail "firmware: $(cat $tmp/PHYS.roles)"
 echo "fitness $f from the tracker; each firmware got the hinge commands of its module (36 to 40 of 40)"
@@ -175,16 +176,9 @@ fw=$!
 "$bin/ahhs-launch" --scenario gait --modules 3 --genome $tmp/g.json --seed 5 --duration 3 --realtime \
   --lcm-url "$url" --arena MIXED --hardware-modules 1 -v >$tmp/mixed.out 2>&1 || { cat $tmp/mixed.out; fail "mixed organism"; }
 wait $fw
-# A real-time episode does not wait for hardware: under load the commands of the last ticks can
-# miss the end of the episode (59 of 60 once, 58 of 60 once, in clean-clone CI runs with other
-# tests beside). So the count of commands is checked against a floor; that every reading is the
-# firmware's own, and that no command is dropped (another episode or module), is checked exactly.
-fwline=$(grep -E "^firmware of module 1: 60 readings sent, [0-9]+ commands applied, 0 dropped, 0 readings of others" $tmp/mixed-firmware.out) ||
-  fail "firmware of module 1: $(cat $tmp/mixed-firmware.out)"
-applied=$(sed -E 's/.* ([0-9]+) commands applied.*/\1/' <<<"$fwline")
-(( applied >= 55 && applied <= 60 )) || fail "firmware of module 1 applied $applied of 60 commands: $fwline"
+realtime_firmware_ok $tmp/mixed-firmware.out 60  # floors: tests/lib.sh
 followed=$(sed -n 's/.*hardware readings followed \([0-9]*\).*/\1/p' $tmp/mixed.out)
 (( ${followed:-0} >= 50 )) || fail "the sim followed ${followed:-no} hardware readings: $(grep ahhs-sim $tmp/mixed.out)"
-grep -q "ahhs-module 1: 60 ticks" $tmp/mixed.out || fail "module 1's controller: $(grep 'ahhs-module 1' $tmp/mixed.out)"
-echo "module 1: 60 readings from its firmware only, $applied of 60 commands to it; the sim's twin followed $followed readings; fitness $(fit $tmp/mixed.out)"
+realtime_controller_ok $tmp/mixed.out 1 60
+echo "module 1: 60 readings from its firmware only, $fw_applied of 60 commands to it; the sim's twin followed $followed readings; fitness $(fit $tmp/mixed.out)"
 echo "PASS"

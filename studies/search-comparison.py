@@ -12,7 +12,7 @@ best judged on held-out episodes (docs/results.md, "Searches beyond the GA"), in
   by ahhs-evolve and the others by ahhs-evaluate --validation 20 --post-eval 50: the same
   candidates, seeds and rules. The GA's runs are the robust study's
   (studies/paper-2010-robust/gait-fixed-ahhs2-50, the same preset and settings), taken as that
-  study exports them; about 37 min per run on 2 cores.
+  study exports them; about 17 min per run on 2 cores (physics 2026-12-05).
 
     /usr/bin/python3 studies/search-comparison.py run OUT_DIR --bin build/bin [--setting gait-fixed]     # resumable
     /usr/bin/python3 studies/search-comparison.py report OUT_DIR --bin build/bin [--setting gait-fixed]

@@ -6,7 +6,7 @@ a comparison says its direction; every verdict names its n. docs/results.md is t
 first study."""
 import numpy as np
 
-from claims_lib import ALPHA, CLOSE, Claims, fmt, pct
+from claims_lib import ALPHA, CLOSE, MIN_RUNS, Claims, fmt, pct
 
 PAPER_FIXED_MAXIMUM = 1.7  # "the theoretical maximum fitness of about 1.7" (fixed docking)
 OVER_THE_WALL = 1.0  # "a fitness of above 1 is reached, if the wall is overcome"
@@ -206,6 +206,8 @@ def controllers(c, configs):
         pass
     elif not uses:
         c.add(claim, paper, "not run yet (gait)", "open")
+    elif len(uses) < MIN_RUNS:
+        c.add(claim, paper, f"too few best genomes so far ({len(uses)})", "open")
     else:
         share = [(u["never"] + u["seldom"]) / u["rules"] for u in uses]
         c.add(claim, paper, f"median {np.median(share):.0%} over {len(uses)} best genomes "
@@ -218,6 +220,8 @@ def controllers(c, configs):
         pass
     elif not damped_uses:
         c.add(claim, paper, "not run yet (gait-damped)", "open")
+    elif len(damped_uses) < MIN_RUNS:
+        c.add(claim, paper, f"too few best genomes so far ({len(damped_uses)})", "open")
     else:
         h = np.median([u["hormones_used"] for u in damped_uses])
         r = np.median([u["active"] for u in damped_uses])

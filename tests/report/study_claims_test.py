@@ -192,6 +192,18 @@ assert rr[NB] == (None, None), rr[NB]
 maxima = {"pendulum": 0.7}
 merged = sr.merge_claims(make_claims(pend, maxima), make_claims(pend, maxima, "robust"))
 assert all(len(row) == 6 for row in merged), merged
+# The claims about the best genomes themselves pool a task's configurations; fewer than MIN_RUNS
+# genomes give no verdict, as fewer runs give none.
+RULES = "Gait: rules that never or seldom trigger"
+USES = "Damped gait: hormones and rules a controller uses"
+use = {"never": 10, "seldom": 0, "rules": 30, "hormones_used": 2, "active": 8}
+r = rows([config("gait-damped-ahhs2-30", [0.6, 0.6], controllers=[use] * 2)])
+assert r[USES] == ("too few best genomes so far (2)", "open"), r[USES]
+assert r[RULES] == ("too few best genomes so far (2)", "open"), r[RULES]
+r = rows([config("gait-damped-ahhs2-30", [0.6] * 5, controllers=[use] * 5)])
+assert r[USES][1] == "reproduced (n = 5 genomes)", r[USES]
+assert r[RULES][1] == "close (n = 5 genomes)", r[RULES]
+
 # Whether this build reproduces each run's best: "every" only when all do; a run whose replay
 # differs is named; a run with no stored fitness is neither.
 class Path:

@@ -15,14 +15,27 @@ ahhs_scratch 'ahhs-[a-z-]+|role_peer'
 lua_pids=()
 trap 'kill "${lua_pids[@]}" 2>/dev/null; _ahhs_cleanup' EXIT
 kit() { "$bin/ahhs-conformance" "$@" --lcm-url "$url"; }
+# kit_pass OUT ARGS...: the kit on ARGS into OUT, for an implementation that must pass. Its
+# timing (a reply within 25 ms of its input; a server's clock on time) is what a busy machine can
+# fail for it (CI's machine: one firmware reply of 60 after 93 ms, with the sanitizer build beside
+# at nice 19): a run whose only FAIL is a timing check runs once more, saying so; a slow
+# implementation fails both.
+kit_pass() {
+  local out=$1 timing='^FAIL (within the real-time budget|keeps real time)'
+  shift
+  kit "$@" >"$out" && return 0
+  [[ $(grep -c '^FAIL' "$out") -eq 1 ]] && grep -Eq "$timing" "$out" || return 1
+  echo "note: $* failed a timing check only ($(grep '^FAIL' "$out")); once more"
+  kit "$@" >"$out"
+}
 
 echo "== the reference firmware and tracker pass"
-"$bin/ahhs-example-firmware" --arena OKFW --id 2 --lcm-url "$url" --seconds 20 >/dev/null &
-"$bin/ahhs-example-tracker" --arena OKTR --modules 3 --lcm-url "$url" --seconds 20 >/dev/null &
+"$bin/ahhs-example-firmware" --arena OKFW --id 2 --lcm-url "$url" --seconds 40 >/dev/null &
+"$bin/ahhs-example-tracker" --arena OKTR --modules 3 --lcm-url "$url" --seconds 40 >/dev/null &
 sleep 0.3
-kit firmware --arena OKFW --id 2 >$tmp/fw.out &
+kit_pass $tmp/fw.out firmware --arena OKFW --id 2 &
 fw_kit=$!
-kit tracker --arena OKTR --modules 3 >$tmp/tr.out || { cat $tmp/tr.out; fail "the reference tracker"; }
+kit_pass $tmp/tr.out tracker --arena OKTR --modules 3 || { cat $tmp/tr.out; fail "the reference tracker"; }
 wait $fw_kit || { cat $tmp/fw.out; fail "the reference firmware"; }
 [[ $(grep -c '^PASS' $tmp/fw.out) -eq 7 ]] || fail "firmware checklist: $(cat $tmp/fw.out)"
 [[ $(grep -c '^PASS' $tmp/tr.out) -eq 5 ]] || fail "tracker checklist: $(cat $tmp/tr.out)"
@@ -50,11 +63,11 @@ grep '^FAIL' $tmp/bad-fw.out $tmp/bad-tr.out
 
 echo "== module controllers: ahhs-module and the Lua controller pass"
 "$bin/ahhs-module" --id 2 --arena MOD --lcm-url "$url" >/dev/null 2>&1 &
-"$bin/ahhs-example-controller-lua" --id 4 --arena LUA --lcm-url "$url" --seconds 30 >$tmp/lua.err 2>&1 &
+"$bin/ahhs-example-controller-lua" --id 4 --arena LUA --lcm-url "$url" --seconds 60 >$tmp/lua.err 2>&1 &
 lua_pids+=($!)
 sleep 0.3
-kit module --arena MOD --id 2 >$tmp/mod.out &
-kit module --arena LUA --id 4 >$tmp/lua.out || { cat $tmp/lua.out $tmp/lua.err; fail "the Lua controller"; }
+kit_pass $tmp/mod.out module --arena MOD --id 2 &
+kit_pass $tmp/lua.out module --arena LUA --id 4 || { cat $tmp/lua.out $tmp/lua.err; fail "the Lua controller"; }
 wait $! || { cat $tmp/mod.out; fail "ahhs-module"; }
 for who in mod lua; do
   [[ $(grep -c '^PASS' $tmp/$who.out) -eq 14 ]] || fail "$who checklist: $(cat $tmp/$who.out)"
@@ -95,11 +108,11 @@ echo "== episode servers: ahhs-sim and ahhs-sim --physics none pass, a faulty on
 "$bin/ahhs-sim" --physics none --arena SRV --lcm-url "$url" </dev/null >$tmp/srv.err 2>&1 &
 "$bin/role_peer" --role faulty-server --arena FSRV --lcm-url "$url" --seconds 20 >/dev/null 2>&1 &
 sleep 0.3
-kit sim --arena SIM >$tmp/sim.out &
+kit_pass $tmp/sim.out sim --arena SIM &
 sim_kit=$!
 (code=0; kit sim --arena FSRV >$tmp/fsrv.out || code=$?; echo "exit $code" >>$tmp/fsrv.out) &
 fsrv_kit=$!
-kit sim --arena SRV >$tmp/srv.out || { cat $tmp/srv.out $tmp/srv.err; fail "ahhs-sim --physics none"; }
+kit_pass $tmp/srv.out sim --arena SRV || { cat $tmp/srv.out $tmp/srv.err; fail "ahhs-sim --physics none"; }
 wait $sim_kit || { cat $tmp/sim.out; fail "ahhs-sim"; }
 wait $fsrv_kit
 for who in sim srv; do

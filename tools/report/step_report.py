@@ -143,8 +143,9 @@ def report_steps(args):
                          f"{fmt(r['upper_quartile'])}), {r['success_share']:.0%}{mark}")
         md.append(f"| `{g}` | " + " | ".join(cells) + " |")
     md.append("")
-    for s in steps[1:]:
-        md.append(f"- {s * 1e3:g} ms: {'passes' if verdict[s] else 'does not pass'}")
+    verdicts = [f"- {s * 1e3:g} ms: {'passes' if verdict[s] else 'does not pass'}"
+                for s in steps[1:]]
+    md += verdicts
     moved = [f"`{g}` at {s * 1e3:g} ms: {name} {fmt(v)} against {fmt(v_half)}"
              for g in args.genomes for s in steps[1:]
              for name, v, v_half in quartiles_moved(by[(g, s)], by[(g, steps[0])])]
@@ -155,8 +156,7 @@ def report_steps(args):
         md += [f"- {m}" for m in moved]
     with open(os.path.join(args.out, "summary.md"), "w") as f:
         f.write("\n".join(md) + "\n")
-    print("\n".join(f"- {s * 1e3:g} ms: {'passes' if verdict[s] else 'does not pass'}"
-                    for s in steps[1:]))
+    print("\n".join(verdicts))
     if moved:
         print(f"quartiles moved: {len(moved)} (summary.md)")
     print(f"steps written to {args.out}: summary.md, steps.csv")

@@ -62,6 +62,8 @@ int main(int argc, char** argv) {
     hooks.interrupted = [] { return g_interrupts > 0; };
     hooks.report = [](const std::string& text) { std::cerr << "ahhs-evaluate: " << text << '\n'; };
     ev::FarmEvaluator farm(bus.get(), setup.farm, hooks);
+    const std::string ready = ev::WaitForFarmWorkers(options.farm, &farm);
+    if (!ready.empty()) std::cerr << "ahhs-evaluate: " << ready << '\n';
     ev::EvalService service(setup.settings, farm, setup.store ? &setup.run : nullptr);
     std::cout << service.Hello().dump() << std::endl;
     std::string line;

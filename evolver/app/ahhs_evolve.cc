@@ -78,11 +78,15 @@ int main(int argc, char** argv) {
   const std::string dir = store->dir();
   const std::string wire_run = store->run_id() + "/s" + std::to_string(session);
   // The last stored generation for a message, when even reading it fails (a full disk).
-  const auto stored_up_to = [&]() -> std::string {
+  // What an interrupted or failed run has stored, for the line that says how to go on.
+  const auto stored = [&]() -> std::string {
     try {
-      return std::to_string(store->LastGeneration());
+      const int last = store->LastGeneration();
+      if (last < 0) return "no generation is stored yet";
+      return last == 0 ? "generation 0 is stored"
+                       : "generations 0-" + std::to_string(last) + " are stored";
     } catch (const std::exception&) {
-      return "?";
+      return "the stored generations could not be read";
     }
   };
   // Evaluations left: generations, or the validation of a finished run.
@@ -143,6 +147,10 @@ int main(int argc, char** argv) {
     };
     hooks.report = [&](const std::string& text) { progress.Say(text); };
     ev::FarmEvaluator farm(bus.get(), ev::FarmOptionsFor(options, config, wire_run), hooks);
+    if (to_evaluate) {
+      const std::string ready = ev::WaitForFarmWorkers(options.farm, &farm);
+      if (!ready.empty()) progress.Say(ready);
+    }
 
     ev::EvolutionHooks evolution_hooks;
     evolution_hooks.on_generation = [&](const ev::GenerationRecord& r) {
@@ -162,13 +170,14 @@ int main(int argc, char** argv) {
           static_cast<unsigned long long>(c.results.dropped + c.statuses.dropped));
   } catch (const ev::FarmInterrupted&) {
     progress.Clear();
-    std::printf("interrupted: generations 0-%s are stored in %s\ncontinue with: %s --resume %s\n",
-                stored_up_to().c_str(), dir.c_str(), self.c_str(), dir.c_str());
+    std::printf("interrupted: %s in %s\ncontinue with: %s --resume %s\n", stored().c_str(),
+                dir.c_str(), self.c_str(), dir.c_str());
     exit_code = 130;
   } catch (const std::exception& e) {
     progress.Clear();
-    std::cerr << "ahhs-evolve: " << e.what() << "\nthe run is stored up to generation "
-              << stored_up_to() << "; continue with: " << self << " --resume " << dir << '\n';
+    std::cerr << "ahhs-evolve: " << e.what() << '\n'
+              << stored() << " in " << dir << "; continue with: " << self << " --resume " << dir
+              << '\n';
     exit_code = ahhs::base::kExitFailure;
   }
   local.StopAll(std::chrono::seconds(5));

@@ -51,11 +51,23 @@ void FarmEvaluator::OnWant(const genome_want_t& msg) {
   wants_.push_back(WantFromMessage(msg));
 }
 
+int FarmEvaluator::ReadyWorkers(FarmClock::time_point now) const {
+  int ready = 0;
+  for (const auto& [name, w] : seen_)
+    ready += now - w.heard <= options_.lease.worker_silence && !quarantined_.count(name) &&
+             !declined_.count(name) &&
+             (w.status.run.empty() || SameRun(w.status.run, options_.run));
+  return ready;
+}
+
 int FarmEvaluator::WaitForWorkers(int count, std::chrono::milliseconds timeout) {
   const auto end = FarmClock::now() + timeout;
-  while (static_cast<int>(seen_.size()) < count && FarmClock::now() < end && !hooks_.interrupted())
+  while (ReadyWorkers(FarmClock::now()) < count && FarmClock::now() < end) {
+    hooks_.poll();
+    if (hooks_.interrupted()) throw FarmInterrupted();
     bus_->Handle(std::chrono::milliseconds(20));
-  return static_cast<int>(seen_.size());
+  }
+  return ReadyWorkers(FarmClock::now());
 }
 
 // One generation's jobs on their way through the farm.

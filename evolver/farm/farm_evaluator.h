@@ -82,7 +82,9 @@ class FarmEvaluator : public FitnessEvaluator {
   // Throws FarmInterrupted, or FarmError when no worker serves or a job keeps failing.
   std::vector<Evaluation> Evaluate(const std::vector<EvaluationJob>& jobs) override;
 
-  // Waits until at least `count` workers have been heard (or the timeout); returns how many.
+  // Waits until at least `count` workers are ready to serve this run (or the timeout, or an
+  // interrupt); returns how many are. Ready: heard lately, idle or serving this run, and not
+  // quarantined or dedicated to another run.
   int WaitForWorkers(int count, std::chrono::milliseconds timeout);
 
   const FarmCounters& counters() const { return counters_; }
@@ -97,6 +99,7 @@ class FarmEvaluator : public FitnessEvaluator {
   void OnStatus(const worker_status_t& msg);
   void OnResult(const eval_result_t& msg);
   void OnWant(const genome_want_t& msg);
+  int ReadyWorkers(FarmClock::time_point now) const;
   // The steps of one Evaluate() round.
   struct Batch;
   void FeedStatuses(Batch* batch, FarmClock::time_point now);

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <sstream>
 
 #include "sim/core/envelope.h"
 
@@ -24,6 +25,30 @@ void AddFarmOptions(cli::App& app, FarmCliOptions* o, const std::string& worker_
   app.add_option("--worker-wait", o->worker_wait, worker_wait_help)
       ->check(cli::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--wait-for-workers", o->wait_for_workers,
+                 "before the first evaluation, wait until N workers (local ones included) are "
+                 "ready to serve, at most --worker-wait seconds; fewer is an error (exit 1)")
+      ->check(cli::Range(0, 100000))
+      ->capture_default_str();
+}
+
+std::string WaitForFarmWorkers(const FarmCliOptions& o, FarmEvaluator* farm) {
+  if (o.wait_for_workers <= 0) return "";
+  const auto wait = std::chrono::milliseconds(static_cast<std::int64_t>(o.worker_wait * 1000));
+  const int ready = farm->WaitForWorkers(o.wait_for_workers, wait);
+  if (ready < o.wait_for_workers) {
+    std::ostringstream seconds;
+    seconds << o.worker_wait;
+    std::string heard;
+    for (const auto& [worker, host] : farm->workers())
+      heard += (heard.empty() ? "" : ", ") + worker + " on " + host;
+    throw FarmError("only " + std::to_string(ready) + " of the " +
+                    std::to_string(o.wait_for_workers) +
+                    " workers asked for (--wait-for-workers) "
+                    "were ready to serve after " +
+                    seconds.str() + " s (heard: " + (heard.empty() ? "none" : heard) + ")");
+  }
+  return std::to_string(ready) + " workers ready";
 }
 
 void ApplyFarmOptions(const FarmCliOptions& o, FarmOptions* farm) {

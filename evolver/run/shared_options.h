@@ -15,10 +15,11 @@ struct FarmCliOptions {
   int workers = -1;  // local workers; -1: one per core
   std::string arena = "direct", url = bus::kDefaultLcmUrl;
   double job_deadline = 300, worker_wait = 60;  // s
+  int wait_for_workers = 0;  // before the first evaluation; 0: start with the first worker heard
 };
 
-// --workers, --arena-kind, --lcm-url, --job-deadline and --worker-wait (`worker_wait_help` says
-// what running out of workers does to this tool).
+// --workers, --arena-kind, --lcm-url, --job-deadline, --worker-wait (`worker_wait_help` says
+// what running out of workers does to this tool) and --wait-for-workers.
 void AddFarmOptions(base::cli::App& app, FarmCliOptions* o, const std::string& worker_wait_help);
 
 // The farm's lease deadline and the wait for a worker.
@@ -37,6 +38,11 @@ void AddRunEndOptions(base::cli::App& app, RunEndCliOptions* o, const std::strin
                       const char* post_eval_default = nullptr);
 inline constexpr const char* kRunEndOptionNames[] = {"--validation", "--validation-candidates",
                                                      "--post-eval", "--post-eval-envelope"};
+
+// --wait-for-workers N: waits until N workers are ready to serve (at most --worker-wait s) and
+// returns the line that says so, "" when not asked; throws FarmError naming the workers heard
+// when fewer are.
+std::string WaitForFarmWorkers(const FarmCliOptions& o, FarmEvaluator* farm);
 
 // Into a run's config, whose scenario (and so its envelope) is already set.
 void ApplyRunEndOptions(const RunEndCliOptions& o, EvolveConfig* config);

@@ -25,12 +25,10 @@ in_host ${hosts[0]} "$bin/ahhs-evolve" $args --out $tmp/one --workers 2 >$tmp/on
 echo "== LAN: workers on hosts 1 and 2 only"
 in_host ${hosts[1]} "$bin/ahhs-worker" --lcm-url "$url" --any-run --id host1 >$tmp/w1.out 2>&1 &
 in_host ${hosts[2]} "$bin/ahhs-worker" --lcm-url "$url" --any-run --id host2 >$tmp/w2.out 2>&1 &
-# Both workers serving before the run starts: the evolver hands out jobs to the first worker it
-# hears, and this run takes about a second, so a worker that starts late under load (CI's
-# machine: host 1) may get none.
-for _ in $(seq 100); do grep -q serving $tmp/w1.out && grep -q serving $tmp/w2.out && break; sleep 0.1; done
-grep -q serving $tmp/w1.out && grep -q serving $tmp/w2.out || fail "workers not serving: $(cat $tmp/w1.out $tmp/w2.out)"
-in_host ${hosts[0]} timeout 300 "$bin/ahhs-evolve" $args --out $tmp/lan --workers 0 --worker-wait 20 >$tmp/lan.out 2>&1 ||
+# The run starts once both workers serve (--wait-for-workers 2): the evolver hands out jobs to
+# the first worker it hears, and this run takes about a second, so a worker that started late
+# under load (CI's machine: host 1) got none.
+in_host ${hosts[0]} timeout 300 "$bin/ahhs-evolve" $args --out $tmp/lan --workers 0 --worker-wait 20 --wait-for-workers 2 >$tmp/lan.out 2>&1 ||
   { cat $tmp/lan.out; fail "LAN run"; }
 dump_run $tmp/one >$tmp/one.dump
 dump_run $tmp/lan >$tmp/lan.dump

@@ -48,7 +48,7 @@ std::string WaitForFarmWorkers(const FarmCliOptions& o, FarmEvaluator* farm) {
                     "were ready to serve after " +
                     seconds.str() + " s (heard: " + (heard.empty() ? "none" : heard) + ")");
   }
-  return std::to_string(ready) + " workers ready";
+  return std::to_string(ready) + (ready == 1 ? " worker ready" : " workers ready");
 }
 
 void ApplyFarmOptions(const FarmCliOptions& o, FarmOptions* farm) {

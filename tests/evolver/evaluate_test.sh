@@ -86,8 +86,9 @@ w=$!
 head -1 $tmp/requests | $S $scenario --trials 2 --envelope paper --workers 0 --lcm-url "$url" \
   --wait-for-workers 1 --worker-wait 20 >$tmp/ext 2>$tmp/err || fail "external: $(cat $tmp/err)"
 grep -qx "ahhs-evaluate: 1 worker ready" $tmp/err || fail "no ready line: $(cat $tmp/err)"
-# Two asked for, one serving: exit 1 before the hello line, the worker heard named.
-$S $scenario --workers 0 --lcm-url "$url" --wait-for-workers 2 --worker-wait 1 </dev/null >$tmp/o 2>$tmp/err
+# Two asked for, one serving: exit 1 before the hello line, the worker heard named (a worker
+# says it serves once a second, so the wait is 4 s).
+$S $scenario --workers 0 --lcm-url "$url" --wait-for-workers 2 --worker-wait 4 </dev/null >$tmp/o 2>$tmp/err
 [[ $? == 1 && ! -s $tmp/o ]] || fail "too few workers: $(cat $tmp/o $tmp/err)"
 grep -q "only 1 of the 2 workers .*(heard: ext on " $tmp/err || fail "too-few message: $(cat $tmp/err)"
 kill $w; wait $w 2>/dev/null

@@ -241,11 +241,11 @@ rc=$?
 grep -q "no evaluation worker has answered" $tmp/out || fail "no-worker message: $(cat $tmp/out)"
 grep -q "continue with: $E --resume $tmp/noworker" $tmp/out || fail "no resume hint"
 # --wait-for-workers N: generation 0 starts once N workers serve; too few is exit 1, resumable,
-# with the workers heard named.
-$E $pend --out $tmp/toofew --workers 1 --wait-for-workers 2 --worker-wait 1 >$tmp/out 2>&1
+# with the workers heard named (a worker says it serves once a second, so the wait is 4 s).
+$E $pend --out $tmp/toofew --workers 1 --wait-for-workers 2 --worker-wait 4 >$tmp/out 2>&1
 rc=$?
 [[ $rc == 1 ]] || fail "too few workers: exit $rc"
-grep -q "only 1 of the 2 workers asked for (--wait-for-workers) were ready to serve after 1 s (heard: .* on " $tmp/out ||
+grep -q "only 1 of the 2 workers asked for (--wait-for-workers) were ready to serve after 4 s (heard: .* on " $tmp/out ||
   fail "too-few-workers message: $(cat $tmp/out)"
 grep -q "continue with: $E --resume $tmp/toofew" $tmp/out || fail "no resume hint after too few workers"
 $E --resume $tmp/toofew --workers 2 --wait-for-workers 2 >$tmp/out 2>&1 || fail "resume with 2 workers: $(cat $tmp/out)"

@@ -14,4 +14,16 @@ inline std::string ExactDouble(double v) {
   return buf;
 }
 
+// A word a POSIX shell reads back as `s`: as it is when it has only safe characters, else in
+// single quotes. For the follow-up commands programs print ("continue with: ...").
+inline std::string ShellWord(const std::string& s) {
+  const bool safe = !s.empty() && s.find_first_not_of(
+                                      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnop"
+                                      "qrstuvwxyz0123456789_./:=@%+,-") == std::string::npos;
+  if (safe) return s;
+  std::string quoted = "'";
+  for (char c : s) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
 }  // namespace ahhs::base

@@ -17,6 +17,7 @@
 
 #include "base/children.h"
 #include "base/cli.h"
+#include "base/format.h"
 #include "bus/fault_bus.h"
 #include "bus/lcm_bus.h"
 #include "bus/wire_version.h"
@@ -99,8 +100,9 @@ int main(int argc, char** argv) {
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
-  // Follow-up commands are printed so that they run as printed (full paths).
-  const std::string self = ahhs::base::ExecutableDir() + "/ahhs-evolve";
+  // Follow-up commands are printed so that they run as printed (full paths, this session's farm).
+  const std::string resume = ahhs::base::ShellWord(ahhs::base::ExecutableDir() + "/ahhs-evolve") +
+                             " --resume " + ahhs::base::ShellWord(dir) + ev::FarmArgs(options.farm);
 
   // Local workers, started before our own bus exists.
   if (options.farm.workers < 0)
@@ -114,11 +116,11 @@ int main(int argc, char** argv) {
   ev::Progress progress(first, config.ga.generations);
   std::printf("run directory: %s\n", dir.c_str());
   std::printf("%s\n", ev::DescribeRun(config, first).c_str());
-  std::printf("workers: %d local (%s arena)%s; more: %s/ahhs-worker --lcm-url '%s' --run %s\n",
+  std::printf("workers: %d local (%s arena)%s; more: %s --lcm-url %s --run %s\n",
               static_cast<int>(local.size()), options.farm.arena.c_str(),
               options.farm.workers == 0 ? ", waiting for external ones" : "",
-              ahhs::base::ExecutableDir().c_str(), options.farm.url.c_str(),
-              store->run_id().c_str());
+              ahhs::base::ShellWord(ahhs::base::ExecutableDir() + "/ahhs-worker").c_str(),
+              ahhs::base::ShellWord(options.farm.url).c_str(), store->run_id().c_str());
   std::fflush(stdout);
 
   int exit_code = 0;
@@ -170,14 +172,13 @@ int main(int argc, char** argv) {
           static_cast<unsigned long long>(c.results.dropped + c.statuses.dropped));
   } catch (const ev::FarmInterrupted&) {
     progress.Clear();
-    std::printf("interrupted: %s in %s\ncontinue with: %s --resume %s\n", stored().c_str(),
-                dir.c_str(), self.c_str(), dir.c_str());
+    std::printf("interrupted: %s in %s\ncontinue with: %s\n", stored().c_str(), dir.c_str(),
+                resume.c_str());
     exit_code = 130;
   } catch (const std::exception& e) {
     progress.Clear();
     std::cerr << "ahhs-evolve: " << e.what() << '\n'
-              << stored() << " in " << dir << "; continue with: " << self << " --resume " << dir
-              << '\n';
+              << stored() << " in " << dir << "; continue with: " << resume << '\n';
     exit_code = ahhs::base::kExitFailure;
   }
   local.StopAll(std::chrono::seconds(5));

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <sstream>
 
+#include "base/format.h"
 #include "sim/core/envelope.h"
 
 namespace ahhs::evolver {
@@ -30,6 +31,19 @@ void AddFarmOptions(cli::App& app, FarmCliOptions* o, const std::string& worker_
                  "ready to serve, at most --worker-wait seconds; fewer is an error (exit 1)")
       ->check(cli::Range(0, 100000))
       ->capture_default_str();
+}
+
+std::string FarmArgs(const FarmCliOptions& o) {
+  const FarmCliOptions d;
+  std::ostringstream args;
+  if (o.workers != d.workers) args << " --workers " << o.workers;
+  if (o.arena != d.arena) args << " --arena-kind " << o.arena;
+  if (o.url != d.url) args << " --lcm-url " << base::ShellWord(o.url);
+  if (o.job_deadline != d.job_deadline) args << " --job-deadline " << o.job_deadline;
+  if (o.worker_wait != d.worker_wait) args << " --worker-wait " << o.worker_wait;
+  if (o.wait_for_workers != d.wait_for_workers)
+    args << " --wait-for-workers " << o.wait_for_workers;
+  return args.str();
 }
 
 std::string WaitForFarmWorkers(const FarmCliOptions& o, FarmEvaluator* farm) {

@@ -39,6 +39,10 @@ void AddRunEndOptions(base::cli::App& app, RunEndCliOptions* o, const std::strin
 inline constexpr const char* kRunEndOptionNames[] = {"--validation", "--validation-candidates",
                                                      "--post-eval", "--post-eval-envelope"};
 
+// The farm options that differ from their defaults, as command-line words (" --lcm-url '...'"),
+// for the follow-up command a run prints: a resumed LAN run finds its workers again.
+std::string FarmArgs(const FarmCliOptions& o);
+
 // --wait-for-workers N: waits until N workers are ready to serve (at most --worker-wait s) and
 // returns the line that says so, "" when not asked; throws FarmError naming the workers heard
 // when fewer are.

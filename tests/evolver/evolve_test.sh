@@ -98,7 +98,10 @@ kill -INT $pid; wait $pid; rc=$?
 grep -q "continue with: $E --resume $tmp/ctrlc" $tmp/ctrlc.out || fail "Ctrl-C message: $(cat $tmp/ctrlc.out)"
 sleep 0.3
 pgrep -g "$pg" -f "$bin/ahhs-worker" >/dev/null && fail "workers left after Ctrl-C"
-$E --resume $tmp/ctrlc >/dev/null 2>&1 || fail "resume after Ctrl-C"
+# The printed command runs as printed, with this session's farm (its workers and bus).
+hint=$(sed -n 's/^continue with: //p' $tmp/ctrlc.out)
+[[ "$hint" == "$E --resume $tmp/ctrlc --workers 2 --lcm-url '$url'" ]] || fail "resume hint: $hint"
+eval "$hint" >/dev/null 2>&1 || fail "resume after Ctrl-C"
 same_run $tmp/whole $tmp/ctrlc "Ctrl-C, resumed"
 $E --resume $tmp/ctrlc >$tmp/again.out 2>&1 || fail "resume of a finished run"
 grep -q "already complete" $tmp/again.out || fail "finished run: $(cat $tmp/again.out)"

@@ -25,7 +25,8 @@ WorkerNode::WorkerNode(bus::Bus* bus, std::string id, std::string host, Evaluate
   piece_subscription_ = bus::SubscribeTyped<genome_chunk_t>(
       *bus_, bus::kEvalGenomeChannel,
       [this](const std::string&, const genome_chunk_t& m) { OnPiece(m); }, &counters_.pieces);
-  PublishStatus();
+  // The first status goes out with the first Poll, once ServeOnlyRun may have been called: one
+  // sent from here said "any run" for a worker dedicated to one.
 }
 
 WorkerNode::~WorkerNode() = default;

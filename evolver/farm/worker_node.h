@@ -56,6 +56,7 @@ class WorkerNode {
 
   // Serve the run with this id only (ahhs-worker --run): requests of other runs are refused, and
   // every status names the run, so that other evolvers pass this worker over. "" = any run.
+  // Call it before the first Poll or Serve: the first status goes out then.
   void ServeOnlyRun(std::string run_id) { serve_run_ = std::move(run_id); }
 
   const WorkerCounters& counters() const { return counters_; }

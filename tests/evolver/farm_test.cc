@@ -98,6 +98,33 @@ TEST_CASE("one or three workers give the same results as evaluating in place") {
   }
 }
 
+TEST_CASE(
+    "waiting for workers counts those ready to serve this run, not one dedicated to another") {
+  bus::LcmBus bus("memq://");
+  WorkerNode any(&bus, "any", "host", Good, std::chrono::milliseconds(50));
+  WorkerNode ours(&bus, "ours", "host", Good, std::chrono::milliseconds(50));
+  WorkerNode theirs(&bus, "theirs", "host", Good, std::chrono::milliseconds(50));
+  ours.ServeOnlyRun("test-run");  // the evolver's session test-run/s1 is of this run
+  theirs.ServeOnlyRun("other-run");
+  bool stop = false;
+  FarmEvaluator::Hooks hooks;
+  hooks.poll = [&] {
+    for (WorkerNode* w : {&any, &ours, &theirs}) w->Poll(std::chrono::microseconds(0));
+  };
+  hooks.interrupted = [&] { return stop; };
+  FarmEvaluator farm(&bus, FastFarm(), hooks);
+  CHECK(farm.WaitForWorkers(2, std::chrono::milliseconds(5000)) == 2);
+  // A third never comes: the wait ends at its timeout with the two, all three heard.
+  CHECK(farm.WaitForWorkers(3, std::chrono::milliseconds(400)) == 2);
+  CHECK(farm.workers().size() == 3);
+  // They serve: the batch's results are as in place, none from the dedicated worker.
+  Batch batch(6);
+  batch.CheckResults(farm.Evaluate(batch.jobs));
+  CHECK(theirs.counters().evaluations == 0);
+  stop = true;
+  CHECK_THROWS_AS(farm.WaitForWorkers(3, std::chrono::milliseconds(5000)), FarmInterrupted);
+}
+
 TEST_CASE("a worker that returns NaN gets its jobs re-issued elsewhere, and it is reported") {
   bus::LcmBus bus("memq://");
   auto nan_fitness = [](const FarmJob& job) {

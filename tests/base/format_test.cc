@@ -6,7 +6,7 @@
 
 using ahhs::base::ShellWord;
 
-TEST_CASE("A safe word is printed as it is; any other in single quotes the shell reads back",
+TEST_CASE("a safe word is printed as it is, any other in single quotes the shell reads back",
           "[format]") {
   CHECK(ShellWord("/work/runs/gait-1") == "/work/runs/gait-1");
   CHECK(ShellWord("udpm://239.255.76.67:7667?ttl=1") == "'udpm://239.255.76.67:7667?ttl=1'");

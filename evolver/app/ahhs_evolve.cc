@@ -78,8 +78,8 @@ int main(int argc, char** argv) {
   }
   const std::string dir = store->dir();
   const std::string wire_run = store->run_id() + "/s" + std::to_string(session);
-  // The last stored generation for a message, when even reading it fails (a full disk).
-  // What an interrupted or failed run has stored, for the line that says how to go on.
+  // What an interrupted or failed run has stored, for the line that says how to go on (also
+  // when reading it fails: a full disk).
   const auto stored = [&]() -> std::string {
     try {
       const int last = store->LastGeneration();

@@ -51,12 +51,16 @@ void FarmEvaluator::OnWant(const genome_want_t& msg) {
   wants_.push_back(WantFromMessage(msg));
 }
 
+bool FarmEvaluator::Usable(const std::string& name, const WorkerSeen& w,
+                           FarmClock::time_point now) const {
+  return now - w.heard <= options_.lease.worker_silence && !quarantined_.count(name) &&
+         !declined_.count(name);
+}
+
 int FarmEvaluator::ReadyWorkers(FarmClock::time_point now) const {
   int ready = 0;
   for (const auto& [name, w] : seen_)
-    ready += now - w.heard <= options_.lease.worker_silence && !quarantined_.count(name) &&
-             !declined_.count(name) &&
-             (w.status.run.empty() || SameRun(w.status.run, options_.run));
+    ready += Usable(name, w, now) && (w.status.run.empty() || SameRun(w.status.run, options_.run));
   return ready;
 }
 
@@ -138,9 +142,7 @@ std::vector<Evaluation> FarmEvaluator::Evaluate(const std::vector<EvaluationJob>
 
 void FarmEvaluator::FeedStatuses(Batch* batch, FarmClock::time_point now) {
   for (const auto& [name, w] : seen_) {
-    if (now - w.heard > options_.lease.worker_silence || quarantined_.count(name) ||
-        declined_.count(name))
-      continue;
+    if (!Usable(name, w, now)) continue;
     std::vector<std::int64_t> ours;
     int others = 0;
     if (SameRun(w.status.run, options_.run))

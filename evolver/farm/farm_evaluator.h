@@ -99,6 +99,8 @@ class FarmEvaluator : public FitnessEvaluator {
   void OnStatus(const worker_status_t& msg);
   void OnResult(const eval_result_t& msg);
   void OnWant(const genome_want_t& msg);
+  // Heard within worker_silence, and neither quarantined nor declined by a refusal.
+  bool Usable(const std::string& name, const WorkerSeen& w, FarmClock::time_point now) const;
   int ReadyWorkers(FarmClock::time_point now) const;
   // The steps of one Evaluate() round.
   struct Batch;

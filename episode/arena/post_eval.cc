@@ -71,7 +71,8 @@ nlohmann::json PostEvaluation::ToJson() const {
   using nlohmann::json;
   const auto number = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
   json envelope_doc = json::object();
-  for (const auto& k : sim::EnvelopeKeys()) envelope_doc[k.name] = envelope.*k.field;
+  for (const auto& k : sim::EnvelopeKeys())
+    if (k.Written(envelope)) envelope_doc[k.name] = envelope.*k.field;
   json episodes = json::array();
   for (std::size_t k = 0; k < seeds.size(); ++k)
     episodes.push_back({{"seed", seeds[k]},

@@ -19,7 +19,7 @@ constexpr std::string_view kEnvelopePrefix = "envelope.";
 json EnvelopeToJson(const sim::Envelope& e) {
   json doc = json::object();
   for (const auto& k : sim::EnvelopeKeys())
-    doc[std::string(k.name).substr(kEnvelopePrefix.size())] = e.*k.field;
+    if (k.Written(e)) doc[std::string(k.name).substr(kEnvelopePrefix.size())] = e.*k.field;
   return doc;
 }
 

@@ -17,7 +17,7 @@ namespace ahhs::evolver {
 // version; evolvers ignore workers of another version (both say so).
 // 3: the envelope of noise in EVAL/REQUEST; 4: the behaviour descriptor in EVAL/RESULT, the
 // pendulum's choices in EVAL/REQUEST.
-inline constexpr int kFarmProtocolVersion = 4;
+inline constexpr int kFarmProtocolVersion = 5;
 inline std::string FarmVersionLine() {  // for --version
   return "farm protocol " + std::to_string(kFarmProtocolVersion);
 }

@@ -42,7 +42,9 @@ EvalService::EvalService(ServiceSettings settings, FitnessEvaluator& evaluator, 
 
 json EvalService::Hello() const {
   json envelope = json::object();
-  for (const auto& k : sim::EnvelopeKeys()) envelope[k.name] = settings_.scenario.envelope.*k.field;
+  for (const auto& k : sim::EnvelopeKeys())
+    if (k.Written(settings_.scenario.envelope))
+      envelope[k.name] = settings_.scenario.envelope.*k.field;
   const modules::Shape& s = settings_.shape;
   json hello = {{"v", kServiceProtocolVersion},
                 {"service", "ahhs-evaluate"},

@@ -1,5 +1,6 @@
 #include "sim/core/envelope.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -11,6 +12,7 @@ namespace {
 // Stream ids under the episode seed (modules::DeriveSeed).
 constexpr std::uint64_t kEnvelopeStream = 0x656e76656c6f7065;  // "envelope"
 constexpr std::uint64_t kSensorNoiseStream = 0x73656e736f72;   // "sensor"
+constexpr std::uint64_t kCommandDelayStream = 0x64656c6179;    // "delay"
 }  // namespace
 
 bool Envelope::operator==(const Envelope& o) const {
@@ -49,6 +51,15 @@ std::uint64_t SensorNoiseSeed(std::uint64_t seed) {
   return modules::DeriveSeed(seed, {kSensorNoiseStream});
 }
 
+int CommandDelaySteps(std::uint64_t seed, std::int64_t tick, int module, int most) {
+  if (most <= 0) return 0;
+  const std::uint64_t h = modules::DeriveSeed(
+      seed,
+      {kCommandDelayStream, static_cast<std::uint64_t>(tick), static_cast<std::uint64_t>(module)});
+  const double u = static_cast<double>(h >> 11) * 0x1.0p-53;  // [0, 1)
+  return std::min(most, static_cast<int>(u * (most + 1)));
+}
+
 Envelope EnvelopePreset(const std::string& name) {
   Envelope e;
   if (name == "none") return e;
@@ -68,6 +79,8 @@ Envelope EnvelopePreset(const std::string& name) {
   e.sensor_noise = 0.023 * f;  // the paper's pendulum sensors
   e.start_angle = 0.05 * f;
   e.cart_speed = 0.05 * f;
+  // command_delay stays 0 in every preset: the presets keep the meaning of the runs made with
+  // them (docs/scenarios.md).
   return e;
 }
 
@@ -82,6 +95,10 @@ std::string CheckEnvelope(const Envelope& e) {
     const double w = e.*k.field;
     const std::string key = k.name;
     if (!std::isfinite(w) || w < 0) return key + ": a half-width of 0 or more";
+    if (k.field == &Envelope::command_delay) {
+      if (w >= 1) return key + ": below 1 tick";
+      continue;
+    }
     const bool scale = k.field != &Envelope::start_heading && k.field != &Envelope::start_offset &&
                        k.field != &Envelope::start_angle;
     if (scale && w >= 0.5) return key + ": below 0.5 (a factor from 1 - w to 1 + w)";
@@ -107,6 +124,8 @@ const std::vector<EnvelopeKey>& EnvelopeKeys() {
        "gait: the chain's start position, U(-w, w) m along x and y"},
       {"envelope.sensor-noise", &Envelope::sensor_noise,
        "gait: U(-w, w) added to every proximity reading"},
+      {"envelope.command-delay", &Envelope::command_delay,
+       "gait: each new hinge target waits up to w ticks, in whole physics steps (w < 1)", false},
       {"envelope.start-angle", &Envelope::start_angle,
        "pendulum: the bob's start angle from hanging down, U(-w, w) rad"},
       {"envelope.cart-speed", &Envelope::cart_speed,

@@ -21,6 +21,8 @@ struct Envelope {
   double start_heading = 0;  // rad: the chain's heading at the start, U(-w, w)
   double start_offset = 0;   // m: the chain's start position, U(-w, w) along x and along y
   double sensor_noise = 0;   // added to every proximity reading, U(-w, w), then clamped to [0, 1]
+  double command_delay = 0;  // ticks, below 1: each module's new target waits a whole number of
+                             // physics steps, U{0 .. floor(w x steps per tick)}, every tick
   // The pendulum (its sensor noise is the scenario's own, +-2.3 %, with or without an envelope).
   double start_angle = 0;  // rad: the bob starts U(-w, w) away from hanging straight down
   double cart_speed = 0;   // the cart's top speed (the sensors keep their nominal scale)
@@ -47,6 +49,10 @@ EnvelopeDraw DrawEnvelope(const Envelope& envelope, std::uint64_t seed, int modu
 // ODE's solver seed).
 std::uint64_t SensorNoiseSeed(std::uint64_t seed);
 
+// How many physics steps a module's new target waits at a tick: uniform on 0 .. most, a pure
+// function of (seed, tick, module), from a stream of its own.
+int CommandDelaySteps(std::uint64_t seed, std::int64_t tick, int module, int most);
+
 // Presets: "none", "paper" (the paper's 2.3 % sensor noise, +-5 % physics, a few degrees and
 // millimetres of start pose), "wide" (twice "paper"). Throws std::invalid_argument otherwise.
 Envelope EnvelopePreset(const std::string& name);
@@ -61,6 +67,10 @@ struct EnvelopeKey {
   const char* name;
   double Envelope::*field;
   const char* help;
+  // A key added after runs were stored is written (configs, summaries, the service's hello) only
+  // when it is not 0, so that what those runs stored stays what a new build writes for them.
+  bool written_when_zero = true;
+  bool Written(const Envelope& e) const { return written_when_zero || e.*field != 0; }
 };
 const std::vector<EnvelopeKey>& EnvelopeKeys();
 

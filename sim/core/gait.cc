@@ -114,6 +114,7 @@ void GaitScenario::Reset(std::uint64_t seed) {
   Destroy();
   dRandSetSeed(static_cast<unsigned long>(seed));
   draw_ = DrawEnvelope(envelope_, seed, num_modules_);
+  seed_ = seed;
   noise_rng_.seed(SensorNoiseSeed(seed));
   Build();
   tick_ = 0;
@@ -296,6 +297,15 @@ void GaitScenario::SetActuators(int compartment, const double* values) {
   if (!std::isfinite(values[0])) return;  // never let a bad value into the physics
   Module& m = modules_[static_cast<std::size_t>(compartment)];
   const double target = k_.hinge_range * std::clamp(values[0], -1.0, 1.0);
+  if (envelope_.command_delay > 0) {  // it takes effect during the next Step()
+    m.pending = target;
+    m.has_pending = true;
+    return;
+  }
+  ApplyTarget(m, target);
+}
+
+void GaitScenario::ApplyTarget(Module& m, double target) {
   if (target == m.target) return;
   m.target = target;
   // A new target wakes a resting organism (ODE then wakes every body connected to this one).
@@ -378,7 +388,17 @@ StepStatus GaitScenario::Step(const SubstepObserver& observer) {
   // A blown-up simulation ends the episode with an error, never with a bogus fitness. The
   // state is checked after every physics step, before ODE could step on a non-finite value
   // (Debian's ODE aborts the process on some of those).
+  // envelope.command-delay: each module's new target waits 0 .. floor(w x substeps) steps.
+  const int most_delay = static_cast<int>(std::floor(envelope_.command_delay * substeps));
   for (int i = 0; i < substeps; ++i) {
+    for (std::size_t m = 0; m < modules_.size(); ++m) {
+      Module& module = modules_[m];
+      if (module.has_pending &&
+          CommandDelaySteps(seed_, tick_, static_cast<int>(m), most_delay) == i) {
+        module.has_pending = false;
+        ApplyTarget(module, module.pending);
+      }
+    }
     try {
       PhysicsStep();
     } catch (const OdeError& e) {

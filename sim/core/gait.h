@@ -74,7 +74,11 @@ class GaitScenario final : public Scenario {
     dJointID hinge = nullptr;
     dJointID gear = nullptr;  // gear friction, if any
     double target = 0;        // hinge target angle, rad
+    // envelope.command-delay: this tick's new target and the physics step it takes effect at.
+    double pending = 0;
+    bool has_pending = false;
   };
+  void ApplyTarget(Module& m, double target);
   void Build();
   void Destroy();
   void PhysicsStep();
@@ -87,6 +91,7 @@ class GaitScenario final : public Scenario {
   Envelope envelope_;
   EnvelopeDraw draw_;          // this episode's draws (all 1 and 0 for no envelope)
   std::mt19937_64 noise_rng_;  // this episode's sensor noise
+  std::uint64_t seed_ = 0;     // this episode's seed (the command delays' stream)
   int num_modules_;
   DockingKind docking_;
   double step_;  // s per physics step (by docking)

@@ -66,6 +66,7 @@ void ScenarioToWire(const ScenarioConfig& config, Message* m) {
   m->envelope_sensor_noise = e.sensor_noise;
   m->envelope_start_angle = e.start_angle;
   m->envelope_cart_speed = e.cart_speed;
+  m->envelope_command_delay = e.command_delay;
   m->pendulum_actuator_gain = config.pendulum.actuator_gain;
   m->pendulum_walls = config.pendulum.walls == PendulumWalls::kSoft ? 1 : 0;
 }
@@ -81,6 +82,7 @@ std::string ScenarioFromWire(const Message& m, ScenarioConfig* config) {
   e.sensor_noise = m.envelope_sensor_noise;
   e.start_angle = m.envelope_start_angle;
   e.cart_speed = m.envelope_cart_speed;
+  e.command_delay = m.envelope_command_delay;
   return ScenarioFromFields(m.scenario, m.num_modules, m.joints, m.duration, e,
                             m.pendulum_actuator_gain, m.pendulum_walls, config);
 }

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # ahhs-launch end to end, inside a private network namespace:
 #  1. fused (inproc:// and LCM's memq://) and process arenas give bit-identical fitness and
-#     behaviour descriptor, also with the pendulum's choices (carried in RESET)
+#     behaviour descriptor, also with the pendulum's choices and a command delay (carried in RESET)
 #     (pendulum, gait; AHHS1, AHHS2; seeds); --arena-kind fused refuses a URL that leaves the
 #     process; the deprecated --fused still works and says so;
 #  2. a genome of the wrong shape is refused;
@@ -28,7 +28,8 @@ $G random --variant ahhs1 --hormones 5 --rules 80 --sensors 4 --actuators 1 --se
 
 echo "== 1. fused == processes"
 for c in "pendulum p2 1 30" "pendulum p1 2 30" "gait g2 3 10" "gait g1 4 10" "gait g2 5 10 --docking fixed" \
-  "pendulum p2 6 30 --pendulum.actuator-gain 10" "pendulum p1 7 30 --pendulum.walls soft"; do
+  "pendulum p2 6 30 --pendulum.actuator-gain 10" "pendulum p1 7 30 --pendulum.walls soft" \
+  "gait g1 8 10 --envelope.command-delay 0.5"; do
   set -- $c
   "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --arena-kind fused >$tmp/f.out || fail "fused $c"
   "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --arena-kind fused --lcm-url memq:// >$tmp/m.out || fail "fused on memq $c"

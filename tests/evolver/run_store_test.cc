@@ -690,3 +690,23 @@ TEST_CASE("validation chooses the best by its median on seeds no training episod
   bad["validation"]["episodes"] = -1;
   CHECK_THROWS_WITH(evolver::ConfigFromJson(bad), Catch::Contains("validation"));
 }
+
+TEST_CASE(
+    "a config stored before the command delay existed is written back unchanged, and a "
+    "delay is stored and read back") {
+  const char* src = std::getenv("AHHS_SOURCE_DIR");
+  REQUIRE(src != nullptr);
+  // The robust study's export: resume and --from-export compare these configs as JSON.
+  const auto summary = nlohmann::json::parse(ReadFile(
+      std::string(src) + "/studies/paper-2010-robust/gait-fixed-ahhs2-50/seed-1/summary.json"));
+  const nlohmann::json stored = summary.at("evolve_config");
+  CHECK(evolver::ConfigToJson(evolver::ConfigFromJson(stored)) == stored);
+  CHECK_FALSE(stored.at("envelope").contains("command-delay"));
+
+  evolver::EvolveConfig config = evolver::ConfigFromJson(stored);
+  config.scenario.envelope.command_delay = 0.25;
+  const nlohmann::json written = evolver::ConfigToJson(config);
+  CHECK(written.at("envelope").at("command-delay") == 0.25);
+  CHECK(evolver::ConfigFromJson(written).scenario.envelope.command_delay == 0.25);
+  CHECK_FALSE(written.at("post_eval").at("envelope").contains("command-delay"));
+}

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <memory>
+#include <set>
 
 #include "sim/core/drive.h"
 #include "sim/core/gait.h"
@@ -95,7 +96,8 @@ TEST_CASE("each envelope key perturbs the episode, and the same seed gives the s
         k.field == &Envelope::sensor_noise)
       continue;
     Envelope e;
-    e.*k.field = EnvelopePreset("paper").*k.field;
+    // The presets have no command delay (docs/scenarios.md): half a tick.
+    e.*k.field = k.field == &Envelope::command_delay ? 0.5 : EnvelopePreset("paper").*k.field;
     const double a =
         DriveEpisode(ScenarioKind::kGait, DockingKind::kFixed, DriveKind::kWave, 3, 5, e);
     const double b =
@@ -170,12 +172,78 @@ TEST_CASE("envelope presets and checks", "[envelope]") {
   e.start_offset = -0.1;
   CHECK_THAT(CheckEnvelope(e), Catch::Contains("envelope.start-offset"));
   CHECK(CheckEnvelope(EnvelopePreset("wide")).empty());
+  e = Envelope{};
+  e.command_delay = 1;  // a whole tick would let the next command overtake this one
+  CHECK_THAT(CheckEnvelope(e), Catch::Contains("envelope.command-delay"));
+  e.command_delay = 0.99;
+  CHECK(CheckEnvelope(e).empty());
+  CHECK(EnvelopePreset("paper").command_delay == 0);
+  CHECK(EnvelopePreset("wide").command_delay == 0);
+}
+
+TEST_CASE("command delays are a pure function of seed, tick and module, uniform on 0 to most",
+          "[envelope]") {
+  // Golden values: a change of the stream changes every delayed episode.
+  CHECK(CommandDelaySteps(7, 0, 0, 3) == 2);
+  CHECK(CommandDelaySteps(7, 1, 0, 3) == 2);
+  CHECK(CommandDelaySteps(7, 0, 1, 3) == 0);
+  CHECK(CommandDelaySteps(8, 0, 0, 3) == 0);
+  CHECK(CommandDelaySteps(7, 0, 0, 0) == 0);
+  int count[4] = {0, 0, 0, 0};
+  for (std::int64_t tick = 0; tick < 4000; ++tick) {
+    const int d = CommandDelaySteps(12345, tick, 2, 3);
+    REQUIRE(d >= 0);
+    REQUIRE(d <= 3);
+    ++count[d];
+  }
+  for (int n : count) {  // 1000 expected each; 5 standard deviations is about 137
+    CHECK(n > 860);
+    CHECK(n < 1140);
+  }
+}
+
+TEST_CASE("a delayed command holds the old target for its drawn physics steps, then takes effect",
+          "[envelope]") {
+  // Fixed docking steps 4 times a tick; w = 0.75 delays a target by 0 to 3 steps.
+  const auto hinge_angles = [](double delay, bool command, std::uint64_t seed) {
+    ScenarioConfig config = MakeScenarioConfig(ScenarioKind::kGait, DockingKind::kFixed, 3, 1);
+    config.envelope.command_delay = delay;
+    auto sim = MakeScenario(config);
+    sim->Reset(seed);
+    const double zero = 0, one = 1;
+    for (int c = 0; c < sim->num_compartments(); ++c)
+      sim->SetActuators(c, c == 0 && command ? &one : &zero);
+    std::vector<double> angles;
+    sim->Step([&](double) { angles.push_back(sim->HingeAngle(0)); });
+    return angles;
+  };
+  std::set<int> seen;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    const int d = CommandDelaySteps(seed, 0, 0, 3);
+    seen.insert(d);
+    const auto delayed = hinge_angles(0.75, true, seed);
+    const auto at_once = hinge_angles(0, true, seed);
+    const auto never = hinge_angles(0, false, seed);
+    REQUIRE(delayed.size() == 4);
+    INFO("seed " << seed << ", delay " << d << " steps");
+    for (int i = 0; i < 4; ++i) {
+      if (i < d)  // the old target (0) still holds: the steps of an episode without the command
+        CHECK(delayed[static_cast<std::size_t>(i)] == never[static_cast<std::size_t>(i)]);
+      else  // from step d on the hinge moves towards its new target
+        CHECK(delayed[static_cast<std::size_t>(i)] != never[static_cast<std::size_t>(i)]);
+    }
+    if (d == 0) CHECK(delayed == at_once);
+  }
+  CHECK(seen.size() == 4);  // these seeds draw every delay, 0 to 3
+  // Below one step per tick (w x 4 < 1) nothing is ever delayed: the bits of no delay.
+  CHECK(hinge_angles(0.2, true, 3) == hinge_angles(0, true, 3));
 }
 
 TEST_CASE("the envelope survives the wire, and a RESET with a bad one is refused", "[envelope]") {
   ScenarioConfig config = MakeScenarioConfig(ScenarioKind::kGait, DockingKind::kFixed, 4, 3);
   config.envelope = EnvelopePreset("wide");
   config.envelope.cart_speed = 0.125;
+  config.envelope.command_delay = 0.375;
   sim_control_t reset{};
   reset.command = sim_control_t::RESET;
   ScenarioToWire(config, &reset);

@@ -47,6 +47,7 @@ const std::set<std::string>& EvolveKeys() {
                                           "envelope.sensor-noise",
                                           "envelope.start-angle",
                                           "envelope.cart-speed",
+                                          "envelope.command-delay",
                                           "pendulum.actuator-gain",
                                           "pendulum.walls"};
   return keys;

@@ -104,9 +104,17 @@ void AddRunEndOptions(cli::App& app, RunEndCliOptions* o, const std::string& pre
     post_eval->capture_default_str();
   app.add_option("--post-eval-envelope", o->post_eval_envelope,
                  prefix +
-                     "envelope of the held-out episodes (default: the run's, or paper for a run "
-                     "without one)")
-      ->check(cli::IsMember({"none", "paper", "wide"}));
+                     "envelope of the held-out episodes, PRESET[,KEY=W...] such as "
+                     "paper,command-delay=0.5 (default: the run's, or paper for a run without "
+                     "one)")
+      ->check([](const std::string& spec) {
+        try {
+          sim::ParseEnvelopeSpec(spec);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      });
 }
 
 void ApplyRunEndOptions(const RunEndCliOptions& o, EvolveConfig* config) {
@@ -114,7 +122,7 @@ void ApplyRunEndOptions(const RunEndCliOptions& o, EvolveConfig* config) {
   config->validation_candidates = o.validation_candidates;
   config->post_eval = o.post_eval;
   config->post_eval_envelope = !o.post_eval_envelope.empty()
-                                   ? sim::EnvelopePreset(o.post_eval_envelope)
+                                   ? sim::ParseEnvelopeSpec(o.post_eval_envelope)
                                : config->scenario.envelope.none() ? sim::EnvelopePreset("paper")
                                                                   : config->scenario.envelope;
 }

@@ -44,6 +44,7 @@ EnvelopeDraw DrawEnvelope(const Envelope& e, std::uint64_t seed, int modules) {
     d.torque_scale.push_back(scale(e.servo_torque));
     d.speed_scale.push_back(scale(e.servo_speed));
   }
+  for (int m = 0; m < modules; ++m) d.hinge.push_back(offset(e.start_hinge));
   return d;
 }
 
@@ -79,8 +80,39 @@ Envelope EnvelopePreset(const std::string& name) {
   e.sensor_noise = 0.023 * f;  // the paper's pendulum sensors
   e.start_angle = 0.05 * f;
   e.cart_speed = 0.05 * f;
-  // command_delay stays 0 in every preset: the presets keep the meaning of the runs made with
-  // them (docs/scenarios.md).
+  // command_delay and start_hinge stay 0 in every preset: the presets keep the meaning of the runs
+  // made with them (docs/scenarios.md).
+  return e;
+}
+
+Envelope ParseEnvelopeSpec(const std::string& spec) {
+  const std::size_t comma = spec.find(',');
+  Envelope e = EnvelopePreset(spec.substr(0, comma));
+  for (std::size_t at = comma; at != std::string::npos;) {
+    const std::size_t next = spec.find(',', at + 1);
+    const std::string item = spec.substr(at + 1, next == std::string::npos ? next : next - at - 1);
+    at = next;
+    const std::size_t eq = item.find('=');
+    const std::string name = "envelope." + item.substr(0, eq);
+    const auto& keys = EnvelopeKeys();
+    const auto key = std::find_if(keys.begin(), keys.end(),
+                                  [&](const EnvelopeKey& k) { return name == k.name; });
+    if (eq == std::string::npos || key == keys.end())
+      throw std::invalid_argument("envelope: '" + item +
+                                  "' is not KEY=W with a key such as friction");
+    std::size_t used = 0;
+    double w = 0;
+    try {
+      w = std::stod(item.substr(eq + 1), &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() - eq - 1)
+      throw std::invalid_argument("envelope: '" + item + "' needs a number after '='");
+    e.*key->field = w;
+  }
+  const std::string error = CheckEnvelope(e);
+  if (!error.empty()) throw std::invalid_argument(error);
   return e;
 }
 
@@ -100,7 +132,7 @@ std::string CheckEnvelope(const Envelope& e) {
       continue;
     }
     const bool scale = k.field != &Envelope::start_heading && k.field != &Envelope::start_offset &&
-                       k.field != &Envelope::start_angle;
+                       k.field != &Envelope::start_angle && k.field != &Envelope::start_hinge;
     if (scale && w >= 0.5) return key + ": below 0.5 (a factor from 1 - w to 1 + w)";
     if (!scale && k.field == &Envelope::start_offset && w > 0.1) return key + ": at most 0.1 m";
     if (!scale && k.field != &Envelope::start_offset && w > M_PI / 4)
@@ -126,6 +158,9 @@ const std::vector<EnvelopeKey>& EnvelopeKeys() {
        "gait: U(-w, w) added to every proximity reading"},
       {"envelope.command-delay", &Envelope::command_delay,
        "gait: each new hinge target waits up to w ticks, in whole physics steps (w < 1)", false},
+      {"envelope.start-hinge", &Envelope::start_hinge,
+       "gait: each module's hinge angle at the start, U(-w, w) rad (the chain is put down bent)",
+       false},
       {"envelope.start-angle", &Envelope::start_angle,
        "pendulum: the bob's start angle from hanging down, U(-w, w) rad"},
       {"envelope.cart-speed", &Envelope::cart_speed,

@@ -23,6 +23,7 @@ struct Envelope {
   double sensor_noise = 0;   // added to every proximity reading, U(-w, w), then clamped to [0, 1]
   double command_delay = 0;  // ticks, below 1: each module's new target waits a whole number of
                              // physics steps, U{0 .. floor(w x steps per tick)}, every tick
+  double start_hinge = 0;    // rad: each module's hinge angle at the start, U(-w, w)
   // The pendulum (its sensor noise is the scenario's own, +-2.3 %, with or without an envelope).
   double start_angle = 0;  // rad: the bob starts U(-w, w) away from hanging straight down
   double cart_speed = 0;   // the cart's top speed (the sensors keep their nominal scale)
@@ -37,12 +38,14 @@ struct EnvelopeDraw {
   double friction_scale = 1;
   std::vector<double> mass_scale, torque_scale, speed_scale;  // one per module
   double heading = 0, offset_x = 0, offset_y = 0;
-  double start_angle = 0;  // pendulum
+  std::vector<double> hinge;  // one start angle per module, rad
+  double start_angle = 0;     // pendulum
   double cart_speed_scale = 1;
 };
 
 // Every factor is drawn whatever the half-widths (a zero one is multiplied away), in a fixed
-// order, so giving one key a width never changes another key's draw.
+// order, so giving one key a width never changes another key's draw. Keys added later draw after
+// all earlier ones, so that the earlier draws of a seed stay what they were.
 EnvelopeDraw DrawEnvelope(const Envelope& envelope, std::uint64_t seed, int modules);
 
 // The seed of the episode's sensor-noise stream (independent of the envelope's draws and of
@@ -56,6 +59,10 @@ int CommandDelaySteps(std::uint64_t seed, std::int64_t tick, int module, int mos
 // Presets: "none", "paper" (the paper's 2.3 % sensor noise, +-5 % physics, a few degrees and
 // millimetres of start pose), "wide" (twice "paper"). Throws std::invalid_argument otherwise.
 Envelope EnvelopePreset(const std::string& name);
+// "PRESET[,KEY=W...]": a preset with single keys on top, KEY as in a run config's envelope table
+// ("paper,command-delay=0.5"). Throws std::invalid_argument naming what is wrong, a bad width
+// included (CheckEnvelope).
+Envelope ParseEnvelopeSpec(const std::string& spec);
 // The preset an envelope equals, or "custom".
 std::string EnvelopeName(const Envelope& envelope);
 // Checks every half-width (finite, >= 0, below what would make a scale factor reach 0, a pose

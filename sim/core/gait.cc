@@ -84,7 +84,8 @@ GaitScenario::GaitScenario(const ScenarioConfig& config, GaitConstants constants
       envelope_(config.envelope),
       num_modules_(config.num_modules),
       docking_(config.docking),
-      step_(docking_ == DockingKind::kDamped ? k_.physics_step_damped : k_.physics_step_fixed) {
+      step_(docking_ == DockingKind::kDamped ? k_.physics_step_damped : k_.physics_step_fixed),
+      substeps_(static_cast<int>(std::lround(k_.control_period / step_))) {
   InitOdeOnce();
   total_ticks_ = EpisodeTicks(config.duration, k_.control_period,
                               EpisodeTicks(k_.duration, k_.control_period, 0));
@@ -268,6 +269,7 @@ void GaitScenario::Build() {
       docks_.push_back(dock);
     }
   }
+  if (envelope_.start_hinge > 0) BendChain();
   if (k_.solver == GaitSolver::kChain) {
     ChainStep::Params rest;
     rest.rest_linear_speed = k_.rest_linear_speed;
@@ -289,6 +291,53 @@ void GaitScenario::Build() {
   sensors_.assign(static_cast<std::size_t>(num_modules_ * kGaitSensors), 0.0);
 }
 
+void GaitScenario::BendChain() {
+  // The joints were made with the chain flat, so a hinge's zero stays flat. Hinge by hinge from
+  // the front, every body behind it turns about its (current) anchor and axis by the drawn angle.
+  std::vector<dBodyID> bodies;  // chain order, each once
+  for (const Module& m : modules_)
+    for (dBodyID b : {m.front.body, m.back.body})
+      if (bodies.empty() || bodies.back() != b) bodies.push_back(b);
+  std::size_t behind = 0;  // the first body behind hinge i
+  for (std::size_t i = 0; i < modules_.size(); ++i) {
+    Module& m = modules_[i];
+    while (bodies[behind] != m.back.body) ++behind;
+    const double angle = draw_.hinge[i];
+    dVector3 a, u;
+    dJointGetHingeAnchor(m.hinge, a);
+    dJointGetHingeAxis(m.hinge, u);
+    // ODE's hinge angle grows as body 2 (the back half) turns by minus the angle about the axis.
+    dMatrix3 r;
+    dRFromAxisAndAngle(r, u[0], u[1], u[2], -angle);
+    dQuaternion qr;
+    dQFromAxisAndAngle(qr, u[0], u[1], u[2], -angle);
+    for (std::size_t k = behind; k < bodies.size(); ++k) {
+      const dReal* p = dBodyGetPosition(bodies[k]);
+      const double d[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+      double q[3];
+      for (int row = 0; row < 3; ++row)
+        q[row] = a[row] + r[4 * row] * d[0] + r[4 * row + 1] * d[1] + r[4 * row + 2] * d[2];
+      dBodySetPosition(bodies[k], q[0], q[1], q[2]);
+      dQuaternion turned;
+      dQMultiply0(turned, qr, dBodyGetQuaternion(bodies[k]));
+      dBodySetQuaternion(bodies[k], turned);
+    }
+    m.target = angle;  // the servo holds the start pose until the controller commands
+  }
+  // Put the bent chain down: its lowest corner on the ground.
+  double lowest = INFINITY;
+  for (const Module& m : modules_)
+    for (dGeomID g : {m.front.geom, m.back.geom}) {
+      dReal aabb[6];
+      dGeomGetAABB(g, aabb);
+      lowest = std::min(lowest, static_cast<double>(aabb[4]));
+    }
+  for (dBodyID b : bodies) {
+    const dReal* p = dBodyGetPosition(b);
+    dBodySetPosition(b, p[0], p[1], p[2] - lowest);
+  }
+}
+
 std::vector<std::pair<int, int>> GaitScenario::Docking() const {
   return ChainDocking(num_modules_);
 }
@@ -298,8 +347,10 @@ void GaitScenario::SetActuators(int compartment, const double* values) {
   Module& m = modules_[static_cast<std::size_t>(compartment)];
   const double target = k_.hinge_range * std::clamp(values[0], -1.0, 1.0);
   if (envelope_.command_delay > 0) {  // it takes effect during the next Step()
+    // envelope.command-delay: the new target waits 0 .. floor(w x substeps) physics steps.
+    const int most = static_cast<int>(std::floor(envelope_.command_delay * substeps_));
     m.pending = target;
-    m.has_pending = true;
+    m.apply_at = CommandDelaySteps(seed_, tick_, compartment, most);
     return;
   }
   ApplyTarget(m, target);
@@ -384,21 +435,16 @@ bool GaitScenario::StateIsSane() const {
 StepStatus GaitScenario::Step(const SubstepObserver& observer) {
   if (!error_.empty()) return StepStatus::kFailed;
   if (tick_ >= total_ticks_) return StepStatus::kFinished;
-  const int substeps = static_cast<int>(std::lround(k_.control_period / step_));
-  // A blown-up simulation ends the episode with an error, never with a bogus fitness. The
-  // state is checked after every physics step, before ODE could step on a non-finite value
-  // (Debian's ODE aborts the process on some of those).
-  // envelope.command-delay: each module's new target waits 0 .. floor(w x substeps) steps.
-  const int most_delay = static_cast<int>(std::floor(envelope_.command_delay * substeps));
-  for (int i = 0; i < substeps; ++i) {
-    for (std::size_t m = 0; m < modules_.size(); ++m) {
-      Module& module = modules_[m];
-      if (module.has_pending &&
-          CommandDelaySteps(seed_, tick_, static_cast<int>(m), most_delay) == i) {
-        module.has_pending = false;
+  for (int i = 0; i < substeps_; ++i) {
+    for (Module& module : modules_) {  // envelope.command-delay: targets due at this step
+      if (module.apply_at == i) {
+        module.apply_at = -1;
         ApplyTarget(module, module.pending);
       }
     }
+    // A blown-up simulation ends the episode with an error, never with a bogus fitness. The
+    // state is checked after every physics step, before ODE could step on a non-finite value
+    // (Debian's ODE aborts the process on some of those).
     try {
       PhysicsStep();
     } catch (const OdeError& e) {
@@ -416,7 +462,8 @@ StepStatus GaitScenario::Step(const SubstepObserver& observer) {
                " (the chain solver's pivoting did not finish)";
       return StepStatus::kFailed;
     }
-    if (observer) observer((static_cast<double>(tick_) + (i + 1.0) / substeps) * k_.control_period);
+    if (observer)
+      observer((static_cast<double>(tick_) + (i + 1.0) / substeps_) * k_.control_period);
   }
   ++tick_;
   SampleSensors();

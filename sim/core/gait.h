@@ -74,12 +74,14 @@ class GaitScenario final : public Scenario {
     dJointID hinge = nullptr;
     dJointID gear = nullptr;  // gear friction, if any
     double target = 0;        // hinge target angle, rad
-    // envelope.command-delay: this tick's new target and the physics step it takes effect at.
+    // envelope.command-delay: this tick's new target and the physics step of the tick it takes
+    // effect at (-1: none pending).
     double pending = 0;
-    bool has_pending = false;
+    int apply_at = -1;
   };
   void ApplyTarget(Module& m, double target);
   void Build();
+  void BendChain();  // envelope.start-hinge: the drawn start angles, lowest corner on the ground
   void Destroy();
   void PhysicsStep();
   bool StateIsSane() const;
@@ -94,7 +96,8 @@ class GaitScenario final : public Scenario {
   std::uint64_t seed_ = 0;     // this episode's seed (the command delays' stream)
   int num_modules_;
   DockingKind docking_;
-  double step_;  // s per physics step (by docking)
+  double step_;   // s per physics step (by docking)
+  int substeps_;  // physics steps per tick
   std::int64_t total_ticks_;
   dWorldID world_ = nullptr;
   dSpaceID space_ = nullptr;

@@ -35,9 +35,7 @@ class EnvelopeOptions {
                       ->check(base::cli::IsMember({"none", "paper", "wide"}));
     for (const auto& k : EnvelopeKeys())
       app.add_option(std::string("--") + k.name, keys_[k.name],
-                     std::string(k.help) +
-                         " (half-width w, on top of "
-                         "--envelope)")
+                     std::string(k.help) + " (on top of --envelope)")
           ->check(base::cli::Range(0.0, 1.0));
     app_ = &app;
   }

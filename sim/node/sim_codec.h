@@ -67,6 +67,7 @@ void ScenarioToWire(const ScenarioConfig& config, Message* m) {
   m->envelope_start_angle = e.start_angle;
   m->envelope_cart_speed = e.cart_speed;
   m->envelope_command_delay = e.command_delay;
+  m->envelope_start_hinge = e.start_hinge;
   m->pendulum_actuator_gain = config.pendulum.actuator_gain;
   m->pendulum_walls = config.pendulum.walls == PendulumWalls::kSoft ? 1 : 0;
 }
@@ -83,6 +84,7 @@ std::string ScenarioFromWire(const Message& m, ScenarioConfig* config) {
   e.start_angle = m.envelope_start_angle;
   e.cart_speed = m.envelope_cart_speed;
   e.command_delay = m.envelope_command_delay;
+  e.start_hinge = m.envelope_start_hinge;
   return ScenarioFromFields(m.scenario, m.num_modules, m.joints, m.duration, e,
                             m.pendulum_actuator_gain, m.pendulum_walls, config);
 }

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # ahhs-launch end to end, inside a private network namespace:
 #  1. fused (inproc:// and LCM's memq://) and process arenas give bit-identical fitness and
-#     behaviour descriptor, also with the pendulum's choices and a command delay (carried in RESET)
-#     (pendulum, gait; AHHS1, AHHS2; seeds); --arena-kind fused refuses a URL that leaves the
+#     behaviour descriptor, also with the pendulum's choices, a command delay and a bent start
+#     (carried in RESET) (pendulum, gait; AHHS1, AHHS2; seeds); --arena-kind fused refuses a URL that leaves the
 #     process; the deprecated --fused still works and says so;
 #  2. a genome of the wrong shape is refused;
 #  3. --log records every tick of every module (ahhs-logger); replaying the log into a fresh
@@ -29,11 +29,11 @@ $G random --variant ahhs1 --hormones 5 --rules 80 --sensors 4 --actuators 1 --se
 echo "== 1. fused == processes"
 for c in "pendulum p2 1 30" "pendulum p1 2 30" "gait g2 3 10" "gait g1 4 10" "gait g2 5 10 --docking fixed" \
   "pendulum p2 6 30 --pendulum.actuator-gain 10" "pendulum p1 7 30 --pendulum.walls soft" \
-  "gait g1 8 10 --envelope.command-delay 0.5"; do
+  "gait g1 8 10 --envelope.command-delay 0.5 --envelope.start-hinge 0.5"; do
   set -- $c
-  "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --arena-kind fused >$tmp/f.out || fail "fused $c"
-  "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --arena-kind fused --lcm-url memq:// >$tmp/m.out || fail "fused on memq $c"
-  "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${5:-} ${6:-} --lcm-url "$url" >$tmp/p.out 2>$tmp/p.err || { cat $tmp/p.err; fail "processes $c"; }
+  "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${@:5} --arena-kind fused >$tmp/f.out || fail "fused $c"
+  "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${@:5} --arena-kind fused --lcm-url memq:// >$tmp/m.out || fail "fused on memq $c"
+  "$bin/ahhs-launch" --scenario $1 --genome $tmp/$2.json --seed $3 --duration $4 ${@:5} --lcm-url "$url" >$tmp/p.out 2>$tmp/p.err || { cat $tmp/p.err; fail "processes $c"; }
   echo "$c: fused $(fit $tmp/f.out) fused on memq $(fit $tmp/m.out) processes $(fit $tmp/p.out)"
   [[ -n "$(fit $tmp/f.out)" && "$(fit $tmp/f.out)" == "$(fit $tmp/p.out)" ]] || fail "fused and process fitness differ ($c)"
   [[ "$(fit $tmp/f.out)" == "$(fit $tmp/m.out)" ]] || fail "inproc:// and memq:// differ ($c)"

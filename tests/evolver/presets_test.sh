@@ -69,6 +69,13 @@ grep -qx "ahhs-evolve: --joints is deprecated and will go; use --docking" /tmp/p
   fail "--scenario without --config is not the paper's defaults"
 "$E" --trials 2 --envelope none --post-eval 0 --show-config | grep -Eq '"(envelope|post_eval)"|"trials": 3' &&
   fail "options do not override the main job"
+# The held-out envelope: a preset with single keys on top; a bad key is one line, exit 2.
+"$E" --post-eval-envelope paper,command-delay=0.5,start-hinge=0.25 --show-config |
+  tr -d ' \n' | grep -q '"post_eval":{"envelope":{"cart-speed":0.05,"command-delay":0.5,.*"start-hinge":0.25,' ||
+  fail "--post-eval-envelope with single keys"
+"$E" --post-eval-envelope paper,delay=0.5 --show-config >/dev/null 2>/tmp/preset.$$.err
+[[ $? == 2 && $(wc -l </tmp/preset.$$.err) == 1 ]] && grep -q "'delay=0.5' is not KEY=W" /tmp/preset.$$.err ||
+  fail "a bad --post-eval-envelope key: $(cat /tmp/preset.$$.err)"
 echo 'rules = "many"' >/tmp/preset.$$.json
 "$E" --config /tmp/preset.$$.json --show-config >/dev/null 2>&1 && fail "a bad preset value was accepted"
 echo "PASS ($n presets)"

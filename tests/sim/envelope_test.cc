@@ -72,6 +72,15 @@ TEST_CASE("envelope draws are a pure function of the seed (golden values)", "[en
   CHECK(none.friction_scale == 1.0);
   CHECK(none.heading == 0.0);
   CHECK(none.mass_scale == std::vector<double>(5, 1.0));
+  CHECK(none.hinge == std::vector<double>(5, 0.0));
+  // A key added later draws after the others: the paper preset's draws stay what they were.
+  Envelope bent = paper;
+  bent.start_hinge = 0.3;
+  const EnvelopeDraw c = DrawEnvelope(bent, 7, 5);
+  CHECK(c.friction_scale == a.friction_scale);
+  CHECK(c.speed_scale == a.speed_scale);
+  for (double h : c.hinge) CHECK(std::fabs(h) <= 0.3);
+  CHECK(c.hinge[0] != c.hinge[1]);
 }
 
 TEST_CASE("no envelope gives exactly the bits of the scenario without one, for every scenario",
@@ -96,8 +105,10 @@ TEST_CASE("each envelope key perturbs the episode, and the same seed gives the s
         k.field == &Envelope::sensor_noise)
       continue;
     Envelope e;
-    // The presets have no command delay (docs/scenarios.md): half a tick.
-    e.*k.field = k.field == &Envelope::command_delay ? 0.5 : EnvelopePreset("paper").*k.field;
+    // The presets have no command delay and no start hinge angles (docs/scenarios.md).
+    e.*k.field = k.field == &Envelope::command_delay ? 0.5
+                 : k.field == &Envelope::start_hinge ? 0.2
+                                                     : EnvelopePreset("paper").*k.field;
     const double a =
         DriveEpisode(ScenarioKind::kGait, DockingKind::kFixed, DriveKind::kWave, 3, 5, e);
     const double b =
@@ -179,6 +190,77 @@ TEST_CASE("envelope presets and checks", "[envelope]") {
   CHECK(CheckEnvelope(e).empty());
   CHECK(EnvelopePreset("paper").command_delay == 0);
   CHECK(EnvelopePreset("wide").command_delay == 0);
+  e = Envelope{};
+  e.start_hinge = 0.8;  // beyond a quarter turn a curled chain could touch itself
+  CHECK_THAT(CheckEnvelope(e), Catch::Contains("envelope.start-hinge"));
+  e.start_hinge = M_PI / 4;
+  CHECK(CheckEnvelope(e).empty());
+  CHECK(EnvelopePreset("wide").start_hinge == 0);
+}
+
+TEST_CASE("an envelope spec is a preset with single keys on top", "[envelope]") {
+  CHECK(ParseEnvelopeSpec("paper") == EnvelopePreset("paper"));
+  Envelope e = EnvelopePreset("paper");
+  e.command_delay = 0.5;
+  e.friction = 0.125;
+  CHECK(ParseEnvelopeSpec("paper,command-delay=0.5,friction=0.125") == e);
+  CHECK(ParseEnvelopeSpec("none,start-hinge=0.25").start_hinge == 0.25);
+  CHECK_THROWS_WITH(ParseEnvelopeSpec("loud"), Catch::Contains("none, paper or wide"));
+  CHECK_THROWS_WITH(ParseEnvelopeSpec("paper,delay=0.5"), Catch::Contains("'delay=0.5'"));
+  CHECK_THROWS_WITH(ParseEnvelopeSpec("paper,friction"), Catch::Contains("KEY=W"));
+  CHECK_THROWS_WITH(ParseEnvelopeSpec("paper,friction=0.1x"), Catch::Contains("a number"));
+  CHECK_THROWS_WITH(ParseEnvelopeSpec("paper,friction="), Catch::Contains("a number"));
+  CHECK_THROWS_WITH(ParseEnvelopeSpec("paper,"), Catch::Contains("KEY=W"));
+  CHECK_THROWS_WITH(ParseEnvelopeSpec("paper,command-delay=1"),
+                    Catch::Contains("envelope.command-delay"));
+}
+
+TEST_CASE("a bent start: each hinge reads its drawn angle, the lowest corner is on the ground",
+          "[envelope]") {
+  // The lowest corner of the module boxes, from the bodies' poses.
+  const auto lowest_corner = [](const std::vector<BodyState>& bodies) {
+    double lowest = INFINITY;
+    for (const BodyState& b : bodies) {
+      if (b.module < 0) continue;
+      const double w = b.quaternion[0], x = b.quaternion[1], y = b.quaternion[2],
+                   z = b.quaternion[3];
+      const double row_z[3] = {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)};
+      for (int corner = 0; corner < 8; ++corner) {
+        double cz = b.position[2];
+        for (int k = 0; k < 3; ++k) cz += row_z[k] * ((corner >> k & 1) ? 0.5 : -0.5) * b.size[k];
+        lowest = std::min(lowest, cz);
+      }
+    }
+    return lowest;
+  };
+  for (DockingKind docking : {DockingKind::kFixed, DockingKind::kDamped}) {
+    ScenarioConfig config = MakeScenarioConfig(ScenarioKind::kGait, docking, 5, 2);
+    config.envelope.start_hinge = 0.6;
+    config.envelope.start_heading = 0.5;  // bent about the turned hinge axes
+    GaitScenario bent(config);
+    bent.Reset(5);
+    const EnvelopeDraw draw = DrawEnvelope(config.envelope, 5, 5);
+    for (int i = 0; i < 5; ++i) {
+      INFO("module " << i);
+      CHECK(bent.HingeAngle(i) == Approx(draw.hinge[static_cast<std::size_t>(i)]).margin(1e-12));
+    }
+    std::vector<BodyState> bodies;
+    bent.Bodies(&bodies);
+    CHECK(lowest_corner(bodies) == Approx(0).margin(1e-12));
+    CHECK(bent.MaxDockingGap() < 1e-9);
+    // Commanded to hold its start angles, the servos hold them while the chain settles.
+    for (int t = 0; t < 20; ++t) {
+      for (int i = 0; i < 5; ++i) {
+        const double a = draw.hinge[static_cast<std::size_t>(i)] / bent.constants().hinge_range;
+        bent.SetActuators(i, &a);
+      }
+      REQUIRE(bent.Step() == StepStatus::kRunning);
+    }
+    for (int i = 0; i < 5; ++i)
+      CHECK(bent.HingeAngle(i) == Approx(draw.hinge[static_cast<std::size_t>(i)]).margin(0.02));
+    bent.Bodies(&bodies);
+    CHECK(lowest_corner(bodies) == Approx(0).margin(0.005));  // resting on the ground
+  }
 }
 
 TEST_CASE("command delays are a pure function of seed, tick and module, uniform on 0 to most",
@@ -244,6 +326,7 @@ TEST_CASE("the envelope survives the wire, and a RESET with a bad one is refused
   config.envelope = EnvelopePreset("wide");
   config.envelope.cart_speed = 0.125;
   config.envelope.command_delay = 0.375;
+  config.envelope.start_hinge = 0.25;
   sim_control_t reset{};
   reset.command = sim_control_t::RESET;
   ScenarioToWire(config, &reset);

@@ -48,6 +48,7 @@ const std::set<std::string>& EvolveKeys() {
                                           "envelope.start-angle",
                                           "envelope.cart-speed",
                                           "envelope.command-delay",
+                                          "envelope.start-hinge",
                                           "pendulum.actuator-gain",
                                           "pendulum.walls"};
   return keys;

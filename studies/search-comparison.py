@@ -18,8 +18,8 @@ best judged on held-out episodes (docs/results.md, "Searches beyond the GA"), in
     /usr/bin/python3 studies/search-comparison.py report OUT_DIR --bin build/bin [--setting gait-fixed]
 
 CMA-ES and MAP-Elites run with examples/optimizers/, each run seeded by its number (optimizer and
-evaluation seeds). `run` is resumable: run it again after a stop and every run goes on from its
-checkpoint. A finished run is exported to studies/search-comparison/[SETTING/]runs/SEARCH/seed-N/
+evaluation seeds). `run` is resumable: stop it with Ctrl-C or `kill -INT PID` (it passes the
+signal on to its run), run it again and every run goes on from its checkpoint. A finished run is exported to studies/search-comparison/[SETTING/]runs/SEARCH/seed-N/
 (its best.json, generations.csv, post-eval.json and, for MAP-Elites, archive.json: tens of kB,
 committed), and a run with an export is not run again, so a fresh machine goes on where the last
 one stopped. `report` reads the exports, tests the held-out medians with two-sided Wilcoxon
@@ -28,6 +28,7 @@ rank-sum tests, and writes results.json, results.md and a figure beside them.
 import argparse
 import json
 import os
+import signal
 import subprocess
 import sys
 
@@ -104,7 +105,17 @@ def run(args):
                 continue
             if not complete(run_dir, setting):
                 print("%s %s seed %d" % (args.setting, name, seed), flush=True)
-                subprocess.run(argv, check=True, stdout=subprocess.DEVNULL)
+                search = subprocess.Popen(argv, stdout=subprocess.DEVNULL)
+                try:
+                    code = search.wait()
+                except KeyboardInterrupt:  # perhaps this process's alone: pass it on
+                    signal.signal(signal.SIGINT, signal.SIG_IGN)
+                    search.send_signal(signal.SIGINT)
+                    search.wait()
+                    print("interrupted: the same command resumes every run", file=sys.stderr)
+                    sys.exit(130)
+                if code != 0:
+                    sys.exit("%s %s seed %d failed (exit %d)" % (args.setting, name, seed, code))
             export(run_dir, setting, name, seed)
 
 
@@ -212,6 +223,10 @@ def main():
     p.add_argument("--workers", type=int, default=2)
     p.add_argument("--lcm-url", default="udpm://239.255.42.90:7795?ttl=0")
     a = p.parse_args()
+    # Stopped by `kill -INT` or `kill` even when a script started it in the background (its shell
+    # has it ignore SIGINT): each run stops in order and resumes.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
     run(a) if a.command == "run" else report(a)
 
 

@@ -23,7 +23,7 @@ from deap import base, cma
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 import ahhs  # noqa: E402
-from ahhs.search import run_search  # noqa: E402
+from ahhs.search import interrupted, run_search, stop_on_signals  # noqa: E402
 
 
 class FitnessMax(base.Fitness):
@@ -75,10 +75,14 @@ def main():
         argv, evaluation = argv[:argv.index("--")], argv[argv.index("--") + 1:]
     a = p.parse_args(argv)
     binary = os.path.join(a.bin, "ahhs-evaluate") if a.bin else None
-    run_search(a.run_dir, lambda ev: CmaEs(ev.shape, a.population, a.sigma, a.seed),
-               evaluation=evaluation,
-               population=a.population, generations=a.generations, name="cma-es (deap)",
-               farm=a.farm.split(), binary=binary, log=lambda line: print(line, flush=True))
+    stop_on_signals()
+    try:
+        run_search(a.run_dir, lambda ev: CmaEs(ev.shape, a.population, a.sigma, a.seed),
+                   evaluation=evaluation,
+                   population=a.population, generations=a.generations, name="cma-es (deap)",
+                   farm=a.farm.split(), binary=binary, log=lambda line: print(line, flush=True))
+    except KeyboardInterrupt:
+        interrupted(a.run_dir)
     print("best genome: ahhs-replay %s" % a.run_dir)
 
 

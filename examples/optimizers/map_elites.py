@@ -25,7 +25,8 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
 import ahhs  # noqa: E402
 from ahhs.qd import GaussianEmitter, GridArchive, Scheduler  # noqa: E402
-from ahhs.search import run_search, write_json_atomically  # noqa: E402
+from ahhs.search import (interrupted, run_search, stop_on_signals,  # noqa: E402
+                         write_json_atomically)
 
 # The descriptors' ranges (docs/scenarios.md): the pendulum's are shares, the gait's metres
 # (the wall's inner face is 1 m from the start).
@@ -87,9 +88,13 @@ def main():
         return MapElites(ev.shape, ev.hello["scenario"], ev.descriptor_names, a.cells, a.batch,
                          a.sigma, a.seed)
 
-    me = run_search(a.run_dir, make, evaluation=evaluation, population=a.batch,
-                    generations=a.generations, name="map-elites", farm=a.farm.split(), binary=binary,
-                    log=lambda line: print(line, flush=True))
+    stop_on_signals()
+    try:
+        me = run_search(a.run_dir, make, evaluation=evaluation, population=a.batch,
+                        generations=a.generations, name="map-elites", farm=a.farm.split(),
+                        binary=binary, log=lambda line: print(line, flush=True))
+    except KeyboardInterrupt:
+        interrupted(a.run_dir)
     stats = me.archive.stats
     print("archive: %d of %d cells, best %.6g" % (stats["num_elites"], a.cells * a.cells,
                                                    stats["obj_max"]))

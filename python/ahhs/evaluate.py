@@ -9,6 +9,7 @@ descriptor and their aggregate out, evaluated by the same farm as ahhs-evolve.
 import json
 import os
 import shutil
+import signal
 import subprocess
 
 from .vector import Shape
@@ -59,8 +60,11 @@ class Evaluator:
                                   (self.hello.get("v"), PROTOCOL_VERSION))
         return self
 
-    def __exit__(self, *exc):
-        self.close()
+    def __exit__(self, exc_type, *exc):
+        if exc_type is KeyboardInterrupt:
+            self.interrupt()
+        else:
+            self.close()
         return False
 
     @property
@@ -104,6 +108,26 @@ class Evaluator:
             raise EvaluationError(answer["error"])
         self.last_seed = answer["seed"]
         return answer["results"]
+
+    def interrupt(self):
+        """Stops the service as Ctrl-C does (SIGINT; a recorded run keeps its complete
+        generations and resumes) and waits for it, at most 60 s. For a Ctrl-C that reached this
+        process alone, as a signal sent to one process in the background does; one sent to the
+        terminal's whole process group has reached the service too, and a second does no harm."""
+        if self._proc is None:
+            return
+        # A further Ctrl-C while the service stops would leave it running behind us.
+        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        try:
+            self._proc.send_signal(signal.SIGINT)
+            try:
+                self._proc.communicate(timeout=60)
+            except subprocess.TimeoutExpired:
+                self._proc.kill()
+                self._proc.communicate()
+        finally:
+            signal.signal(signal.SIGINT, previous)
+        self._proc = None
 
     def close(self):
         """Ends the service (end of its input) and waits for it: at most 30 s, or, for a recorded

@@ -11,10 +11,16 @@ An optimizer is any object with
         a MAP-Elites archive; called before the checkpoint, so a resume rewrites them.
 It must be picklable, and draw its random numbers from generators it holds (or from numpy's and
 Python's global ones, which the checkpoint saves too).
+
+Ctrl-C (KeyboardInterrupt) stops the service too, even when the signal reached this process
+alone, and is raised again once it has stopped. A search's main calls `stop_on_signals` first
+and `interrupted` on KeyboardInterrupt.
 """
 import os
 import pickle
 import random
+import signal
+import sys
 import warnings
 
 import numpy as np
@@ -40,6 +46,25 @@ def _load(run_dir):
         return None
     with open(path, "rb") as f:
         return pickle.load(f)
+
+
+def stop_on_signals():
+    """For a search's main: SIGINT and SIGTERM raise KeyboardInterrupt, so `kill -INT PID` and
+    `kill PID` stop a search and its service in order (a resumable run), also when it was started
+    in the background by a script, whose shell has it ignore SIGINT."""
+    def interrupt(signum, frame):
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    signal.signal(signal.SIGTERM, interrupt)
+
+
+def interrupted(run_dir):
+    """What a search's main does on Ctrl-C: one line on how to go on, and exit 130 (as
+    ahhs-evolve)."""
+    print("interrupted: the same command resumes %s from its last checkpoint" % run_dir,
+          file=sys.stderr)
+    sys.exit(130)
 
 
 def write_json_atomically(path, doc):

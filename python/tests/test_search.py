@@ -139,6 +139,33 @@ class SearchTest(unittest.TestCase):
         with open(os.path.join(report, "summary.md")) as f:
             self.assertIn("## The archive of", f.read())
 
+    def test_sigint_to_a_background_search_alone_stops_its_service_and_the_run_resumes(self):
+        # A search started in the background by a script (its shell has it ignore SIGINT), then
+        # SIGINT to its process only: it stops its service, says how to go on and exits 130; the
+        # run resumes. (It used to ignore the signal, and its service went on.)
+        run_dir = os.path.join(tempfile.mkdtemp(prefix="ahhs-search-"), "run")
+        argv = (example("cmaes.py") + [run_dir, "--population", "8", "--generations", "12"] +
+                FARM + TASK + ["--validation", "3", "--post-eval", "4"])
+        p = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN))
+        while checkpoint_generation(run_dir) < 2 and p.poll() is None:
+            time.sleep(0.002)
+        p.send_signal(signal.SIGINT)
+        try:
+            _, said = p.communicate(timeout=30)
+        except subprocess.TimeoutExpired:
+            p.kill()
+            p.communicate()
+            raise AssertionError("the search went on after SIGINT")
+        self.assertEqual(p.returncode, 130, said)
+        self.assertIn("interrupted: the same command resumes " + run_dir, said)
+        wait_for_service_to_end(run_dir, seconds=5)
+        stored = checkpoint_generation(run_dir)
+        self.assertLess(stored, 12, "the search ended before the signal")
+        out = subprocess.run(argv, check=True, capture_output=True, text=True).stdout
+        self.assertIn("resuming %s at generation %d" % (run_dir, stored), out)
+        self.assertEqual(len(dump(run_dir)), 12 * 8 * 3)
+
 
 if __name__ == "__main__":
     unittest.main()

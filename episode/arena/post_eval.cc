@@ -22,6 +22,7 @@ std::uint64_t HeldOutSeed(std::uint64_t k) { return modules::DeriveSeed(kHeldOut
 
 PostEvaluation PostEvaluate(const EpisodeSpec& spec, const sim::Envelope& envelope, int n) {
   PostEvaluation r;
+  r.kind = spec.config.kind;
   r.envelope = envelope;
   std::vector<double> ok;
   std::vector<double> commands;
@@ -42,6 +43,7 @@ PostEvaluation PostEvaluate(const EpisodeSpec& spec, const sim::Envelope& envelo
     if (!result.ok) {
       r.fitnesses.push_back(std::numeric_limits<double>::quiet_NaN());
       r.succeeded.push_back(false);
+      r.halves_over_wall.push_back(-1);
       r.errors.push_back(result.error);
       ++r.failed;
       continue;
@@ -55,10 +57,14 @@ PostEvaluation PostEvaluate(const EpisodeSpec& spec, const sim::Envelope& envelo
                   static_cast<double>(behaviour.ticks_above_pivot()) >=
                       kPendulumSuccessShare * static_cast<double>(behaviour.ticks());
     r.succeeded.push_back(success);
+    r.halves_over_wall.push_back(behaviour.halves_over_wall());
+    if (behaviour.halves() > 0 && behaviour.halves_over_wall() == behaviour.halves())
+      r.beyond_wall_share += 1;
   }
   r.success_share =
       n > 0 ? static_cast<double>(std::count(r.succeeded.begin(), r.succeeded.end(), true)) / n
             : 0.0;
+  r.beyond_wall_share = n > 0 ? r.beyond_wall_share / n : 0.0;
   const Spread s = SpreadOf(std::move(ok));
   r.median = s.median;
   r.lower_quartile = s.lower_quartile;
@@ -73,24 +79,31 @@ nlohmann::json PostEvaluation::ToJson() const {
   json envelope_doc = json::object();
   for (const auto& k : sim::EnvelopeKeys())
     if (k.Written(envelope)) envelope_doc[k.name] = envelope.*k.field;
+  const bool gait = kind == sim::ScenarioKind::kGait;
   json episodes = json::array();
-  for (std::size_t k = 0; k < seeds.size(); ++k)
-    episodes.push_back({{"seed", seeds[k]},
-                        {"fitness", number(fitnesses[k])},
-                        {"succeeded", static_cast<bool>(succeeded[k])}});
-  return {{"episodes", static_cast<int>(seeds.size())},
-          {"envelope", sim::EnvelopeName(envelope)},
-          {"envelope_half_widths", envelope_doc},
-          {"failed", failed},
-          {"median", number(median)},
-          {"lower_quartile", number(lower_quartile)},
-          {"upper_quartile", number(upper_quartile)},
-          {"min", number(min)},
-          {"success_share", success_share},
-          {"per_episode", episodes}};
+  for (std::size_t k = 0; k < seeds.size(); ++k) {
+    json e = {{"seed", seeds[k]},
+              {"fitness", number(fitnesses[k])},
+              {"succeeded", static_cast<bool>(succeeded[k])}};
+    if (gait)
+      e["halves_over_wall"] = halves_over_wall[k] >= 0 ? json(halves_over_wall[k]) : json(nullptr);
+    episodes.push_back(std::move(e));
+  }
+  json doc = {{"episodes", static_cast<int>(seeds.size())},
+              {"envelope", sim::EnvelopeName(envelope)},
+              {"envelope_half_widths", envelope_doc},
+              {"failed", failed},
+              {"median", number(median)},
+              {"lower_quartile", number(lower_quartile)},
+              {"upper_quartile", number(upper_quartile)},
+              {"min", number(min)},
+              {"success_share", success_share},
+              {"per_episode", episodes}};
+  if (gait) doc["beyond_wall_share"] = beyond_wall_share;
+  return doc;
 }
 
-std::string PostEvaluation::Describe(sim::ScenarioKind kind) const {
+std::string PostEvaluation::Describe() const {
   char buf[400];
   const int n = static_cast<int>(seeds.size());
   const std::string env = sim::EnvelopeName(envelope);
@@ -100,13 +113,17 @@ std::string PostEvaluation::Describe(sim::ScenarioKind kind) const {
                   env.c_str(), errors.empty() ? "none run" : errors.front().c_str());
     return buf;
   }
+  const bool gait = kind == sim::ScenarioKind::kGait;
+  char beyond[64] = "";
+  if (gait)
+    std::snprintf(beyond, sizeof beyond, ", wholly beyond it at the end in %.0f %%",
+                  100 * beyond_wall_share);
   std::snprintf(buf, sizeof buf,
                 "post-evaluation on %d held-out episodes (envelope %s): median %.4g, quartiles "
-                "%.4g / %.4g, min %.4g; %s in %.0f %%%s",
+                "%.4g / %.4g, min %.4g; %s in %.0f %%%s%s",
                 n, env.c_str(), median, lower_quartile, upper_quartile, min,
-                kind == sim::ScenarioKind::kGait ? "over the wall (fitness > 1)"
-                                                 : "bob above the pivot in >= 20 % of ticks",
-                100 * success_share,
+                gait ? "over the wall (fitness > 1)" : "bob above the pivot in >= 20 % of ticks",
+                100 * success_share, beyond,
                 failed > 0 ? (" (" + std::to_string(failed) + " failed)").c_str() : "");
   return buf;
 }

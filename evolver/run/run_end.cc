@@ -97,7 +97,7 @@ void PostEvaluateBest(const RunStore& store, const EvolveConfig& config, std::FI
   spec.episode = 1;
   const episode::PostEvaluation p =
       episode::PostEvaluate(spec, config.post_eval_envelope, config.post_eval);
-  const std::string line = p.Describe(config.scenario.kind);
+  const std::string line = p.Describe();
   nlohmann::json doc = p.ToJson();
   doc["description"] = line;
   doc["generation"] = best.generation;

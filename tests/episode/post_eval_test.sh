@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Held-out post-evaluation (ahhs-replay --post-eval, docs/evolution.md): a knife-edge, the first
 # study's damped AHHS1-120 seed-1 best (2.736 on its own episode; the fixture is a copy), scores
-# far lower on held-out episodes under the paper's envelope; bad envelope options are usage
-# errors. (The draws' determinism: tests/sim/envelope_test.cc.)
+# far lower on held-out episodes under the paper's envelope; a gait that crosses the wall is
+# counted as wholly beyond it whatever its fitness; bad envelope options are usage errors. (The draws' determinism: tests/sim/envelope_test.cc.)
 bin=${1:?usage: post_eval_test.sh BIN_DIR}
 source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_scratch  # every command runs in the foreground: nothing to kill
@@ -18,6 +18,21 @@ awk -v m="$median" 'BEGIN { exit !(m < 0.5 * 2.7359187058763337) }' ||
   fail "a knife-edge keeps its fitness held out? $line"
 grep -q "over the wall (fitness > 1) in 0 %" <<<"$line" || fail "share over the wall: $line"
 echo "$line"
+# Crossing the wall is not scoring over 1: the robust study's fixed AHHS1-80 seed-2 best ends its
+# second held-out episode with all ten module halves beyond the wall at fitness 0.838, its first
+# short of the wall; both are in post-eval.json.
+crosser=$AHHS_SOURCE_DIR/studies/paper-2010-robust/gait-fixed-ahhs1-80/seed-2/best.json
+"$bin/ahhs-replay" --genome "$crosser" --post-eval 2 --post-eval-json pe.json >b.out 2>&1 ||
+  fail "post-evaluation of the crosser: $(cat b.out)"
+grep -q "over the wall (fitness > 1) in 0 %, wholly beyond it at the end in 50 %" b.out ||
+  fail "wholly beyond the wall: $(cat b.out)"
+python3 - pe.json <<'PY' || fail "post-eval.json of the crosser: $(cat pe.json)"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["beyond_wall_share"] == 0.5 and d["success_share"] == 0, d
+e = d["per_episode"]
+assert [x["halves_over_wall"] for x in e] == [0, 10] and e[1]["fitness"] == 0.8384751620859672, e
+PY
 # Under an envelope the episode itself changes, and says so.
 "${replay[@]}" --envelope paper --duration 5 >c.out 2>&1 || fail "--envelope paper: $(cat c.out)"
 grep -q "in the changed physics" c.out || fail "an enveloped replay compared as if unchanged: $(cat c.out)"

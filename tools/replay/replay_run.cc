@@ -92,10 +92,10 @@ int RunReplay(const ReplayOptions& o, const ReplayTarget& t) {
     }
     if (o.post_eval > 0) {
       const ep::PostEvaluation p = ep::PostEvaluate(t.spec, t.post_envelope, o.post_eval);
-      std::printf("%s\n", p.Describe(t.spec.config.kind).c_str());
+      std::printf("%s\n", p.Describe().c_str());
       if (!o.post_eval_json.empty()) {
         nlohmann::json doc = p.ToJson();
-        doc["description"] = p.Describe(t.spec.config.kind);
+        doc["description"] = p.Describe();
         doc["genome_hash"] = am::GenomeHashText(t.spec.genome);
         ahhs::base::WriteFileAtomically(o.post_eval_json, doc.dump(2) + "\n");
       }

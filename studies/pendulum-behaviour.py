@@ -15,7 +15,6 @@ changing sign within 86 degrees of upright between two ticks).
 """
 import csv
 import glob
-import math
 import os
 import subprocess
 import sys

@@ -13,7 +13,9 @@ Every run's best genome is replayed once (rule activity, hormones in use, and wh
 reproduces its stored fitness bit for bit) and 8 times with perturbed frictions (ahhs-replay
 --robustness). Its robust fitness is the median of its post-evaluation (held-out episodes under
 the run's envelope, in summary.json) when every run of the configuration has one, else of those
-8 replays; the interquartile range of the same episodes is its spread.
+8 replays; the interquartile range of the same episodes is its spread. For the gait, the share of
+its held-out episodes that end wholly beyond the wall is read from the post-evaluation, or counted
+by post-evaluating the best again when the stored fitnesses replay bit for bit (beyond_wall_of).
 Each claim about runs' fitness is judged twice: on each run's best fitness (the paper's
 statistic) and on the robust fitness of each run's best, since an evolved gait best is often a
 knife-edge of deterministic chaos (docs/scenarios.md).
@@ -57,6 +59,10 @@ class Config:
         # post-evaluation for every run. A two-humped distribution's median moves with sampling;
         # this share does not (docs/findings.md, "The warm-started chain solver ...").
         self.success = None
+        # per run (gait): the share of its best's held-out episodes that end with every module
+        # half beyond the wall, whatever the fitness (beyond_wall_of); None when a run has none
+        self.beyond = None
+        self.beyond_source = []  # per run: "stored", "replayed" or why it has none
         self.controllers = []  # per run: rule and hormone use of its best genome
         # per run: the generation reaching 75 % of its setting's maximum, or its length
         self.speed = []
@@ -186,6 +192,45 @@ def robust_fitness(config):
     config.robust_source = config.spread_source = f"{ROBUSTNESS} friction-perturbed replays"
 
 
+def beyond_wall_of(bin_dir, run, scratch):
+    """(share, source) for a gait run's best: the share of its held-out episodes that end with
+    every module half beyond the wall's outer face (docs/evolution.md, "Held-out post-evaluation").
+    From its post-evaluation when that counted them ("stored"); else the best is post-evaluated
+    again by this build on the same held-out episodes and the count is taken only if every
+    episode's seed and fitness equal the stored ones bit for bit ("replayed"). (None, why)
+    without a post-evaluation or when the replay differs."""
+    post = summary_of(run).get("post_eval") if os.path.isfile(
+        os.path.join(run.path, "summary.json")) else None
+    if not post or not post.get("per_episode"):
+        return None, "no post-evaluation"
+    if "beyond_wall_share" in post:
+        return float(post["beyond_wall_share"]), "stored"
+    widths = post.get("envelope_half_widths") or {}
+    out = os.path.join(scratch, "post-eval.json")
+    argv = run.replay_argv() + ["--post-eval", str(len(post["per_episode"])), "--post-eval-json",
+                                out, "--overwrite", "--envelope", "none"]
+    for key, width in sorted(widths.items()):
+        argv += ["--" + key, repr(float(width))]
+    run_replay(bin_dir, argv)
+    with open(out) as f:
+        again = json.load(f)
+    stored = [(e.get("seed"), e.get("fitness")) for e in post["per_episode"]]
+    replayed = [(e.get("seed"), e.get("fitness")) for e in again.get("per_episode", [])]
+    if stored != replayed or "beyond_wall_share" not in again:
+        return None, "its post-evaluation does not replay bit for bit with this build"
+    return float(again["beyond_wall_share"]), "replayed"
+
+
+def beyond_wall(bin_dir, config, scratch):
+    """Sets config.beyond (every run's share, or None) and config.beyond_source (gait only)."""
+    if config.task not in ("gait-fixed", "gait-damped"):
+        return
+    shares = [beyond_wall_of(bin_dir, r, scratch) for r in config.runs]
+    config.beyond_source = [how for _, how in shares]
+    values = [v for v, _ in shares]
+    config.beyond = None if None in values else values
+
+
 NEIGHBOURHOOD_ORIGINALS = 3
 # The robust fitness of the originals the paper's neighbourhoods start from, per scenario label:
 # 0.84 (AHHS1-80) and 0.81 (AHHS2-50), fixed docking. Elsewhere the originals are the best.
@@ -291,6 +336,7 @@ def report_study(args):
             c.robustness_runs = [robustness_of(bin_dir, r, scratch) for r in c.runs]
             c.robustness = c.robustness_runs[int(np.argmax(c.best))]
             robust_fitness(c)
+            beyond_wall(bin_dir, c, scratch)
             if not args.no_replay:
                 c.neighbourhood = neighbourhood_of(
                     bin_dir, c, os.path.join(args.out, c.scenario_label, f"neighbourhood-{c.name}"))
@@ -340,6 +386,31 @@ def success_cell(c):
     return f"{np.mean(c.success):.0%} ({sum(x > 0 for x in c.success)} of {len(c.success)})"
 
 
+def beyond_cell(c):
+    """"12 % (2 of 3)" like success_cell, for the episodes wholly beyond the wall (gait)."""
+    if c.beyond is None:
+        return "-"
+    return f"{np.mean(c.beyond):.0%} ({sum(x > 0 for x in c.beyond)} of {len(c.beyond)})"
+
+
+def beyond_sentence(configs):
+    """What results.md says of the beyond-the-wall counts that were not stored: how many were
+    replayed, and which runs' post-evaluations this build does not reproduce."""
+    sources = [(r.path, how) for c in configs for r, how in zip(c.runs, c.beyond_source)]
+    replayed = sum(1 for _, how in sources if how == "replayed")
+    differ = [p for p, how in sources if how not in ("stored", "replayed", "no post-evaluation")]
+    words = []
+    if replayed:
+        words.append(f"Post-evaluations made before episodes wholly beyond the wall were "
+                     f"counted: {replayed}. Their bests were post-evaluated again by this build on "
+                     "the same held-out episodes, every fitness bit for bit the stored one.")
+    if differ:
+        words.append(f"**Post-evaluations this build does not replay bit for bit: {len(differ)}** "
+                     "(" + ", ".join(differ) + "); their configurations have no count of episodes "
+                     "wholly beyond the wall.")
+    return " ".join(words), differ
+
+
 def robust_sources(configs):
     """What each configuration's robust fitness is the median of, in words."""
     sources = OrderedDict()
@@ -358,6 +429,12 @@ def write_results(args, name, configs, scenarios, maxima, claims):
     if differ:
         print(f"ahhs-study report: warning: {len(differ)} of {complete} runs' best genomes do not "
               "replay to their stored fitness with this build (results.md)", file=sys.stderr)
+    beyond, beyond_differ = beyond_sentence(configs)
+    if beyond_differ:
+        print("ahhs-study report: warning: post-evaluations this build does not replay bit for "
+              f"bit: {len(beyond_differ)} (results.md)", file=sys.stderr)
+    if beyond:
+        replayed += " " + beyond
     md = [f"# Results: study `{name}` against Hamann et al. (ALife 2010)", "",
           f"From {complete} complete runs of the {planned} planned "
           f"(`ahhs-study report {os.path.basename(os.path.normpath(args.study))}`). A row whose "
@@ -381,22 +458,27 @@ def write_results(args, name, configs, scenarios, maxima, claims):
            "succeeding (post-evaluated runs only): over the wall (gait) or the bob above the "
            "pivot in at least 20 % of ticks (pendulum), the mean of the runs' shares, and how "
            "many runs have any; where a best's held-out fitness has two humps (at the wall or "
-           "over it), its median moves with sampling and this share does not. Rules: share of the "
+           "over it), its median moves with sampling and this share does not. Held-out episodes "
+           "wholly beyond the wall (gait, post-evaluated runs only): every module half beyond the "
+           "wall's outer face at the end, whatever the fitness (a chain that tumbles over it ends "
+           "beyond it at fitness below 1, and one over 1 may still straddle it); the mean of the "
+           "runs' shares, and how many runs have any. Rules: share of the "
            "rules of the runs' best genomes that "
            "never or seldom (< 1 % of ticks) trigger; hormones: touched by a rule part active in "
            ">= 1 % of ticks (median over runs).", "",
            "| configuration | runs | best fitness: median (quartiles) | max | robust median of the max | "
            "robust fitness of the runs' bests: median (quartiles) | "
            "held-out episodes succeeding: all runs' (runs with any) | "
+           "held-out episodes wholly beyond the wall: all runs' (runs with any) | "
            "within 80 % of its setting's maximum | runs reaching 75 % of it (median generation of those) | "
            "rules never/seldom | "
            "hormones used |",
-           "|---|---|---|---|---|---|---|---|---|---|---|"]
+           "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     results = {"study": name, "complete_runs": complete, "planned_runs": planned,
-               "replay_differs": differ, "maxima": maxima, "configs": {}, "claims": claims}
+               "replay_differs": differ, "post_eval_differs": beyond_differ, "maxima": maxima, "configs": {}, "claims": claims}
     for c in configs:
         if not c.runs:
-            md.append(f"| {c.name} | 0 of {c.planned} | not run yet | | | | | | | | |")
+            md.append(f"| {c.name} | 0 of {c.planned} | not run yet | | | | | | | | | |")
             continue
         q1, med, q3 = np.percentile(c.best, [25, 50, 75])
         within = float(np.mean(c.best >= 0.8 * maxima[c.setting_label]))
@@ -406,7 +488,7 @@ def write_results(args, name, configs, scenarios, maxima, claims):
             *np.percentile(c.robust, [25, 50, 75]))
         md.append(f"| {c.name} | {len(c.runs)} of {c.planned} | {med:.3f} ({q1:.3f} / {q3:.3f}) | "
                   f"{np.max(c.best):.3f} | {fmt(c.robustness['median'])} | {robust} | "
-                  f"{success_cell(c)} | {within:.0%} | "
+                  f"{success_cell(c)} | {beyond_cell(c)} | {within:.0%} | "
                   f"{reaching(c)} | {quiet:.0%} | "
                   f"{hormones:g} of {c.controllers[0]['hormones']} |")
         results["configs"][c.name] = {
@@ -417,6 +499,7 @@ def write_results(args, name, configs, scenarios, maxima, claims):
             "robustness": c.robustness, "robust_source": c.robust_source,
             "robust": None if c.robust is None else [float(v) for v in c.robust],
             "spread": c.spread, "success": c.success,
+            "beyond_wall": c.beyond, "beyond_wall_source": c.beyond_source,
             "robustness_runs": c.robustness_runs,
             "neighbourhood": c.neighbourhood, "controllers": c.controllers}
     md += ["", "## Figures", ""]

@@ -1,5 +1,5 @@
 // The study plan: what a plan file says becomes exactly the runs and the ahhs-evolve config files
-// a study runs, and a bad plan is refused with the line that is wrong.
+// a study runs, and a bad plan is refused with the line that is wrong. Also --finish-by's time.
 #include "tools/study/study_plan.h"
 
 #include <toml++/toml.h>
@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "base/temp_files.h"
+#include "tools/study/study_runs.h"
 
 using namespace ahhs;
 namespace fs = std::filesystem;
@@ -99,4 +100,27 @@ TEST_CASE("the committed study plans load, and their configurations resolve to f
     const bool damped = config.name.find("damped") != std::string::npos;
     CHECK(resolved["trials"].value<int>() == (damped ? 3 : 5));
   }
+}
+
+TEST_CASE(
+    "a study finishes by a time of day or after a duration from now, anything else is a usage "
+    "error") {
+  std::tm noon{};
+  noon.tm_year = 126;
+  noon.tm_mon = 11;
+  noon.tm_mday = 6;
+  noon.tm_hour = 12;
+  noon.tm_isdst = -1;
+  const std::time_t now = std::mktime(&noon);
+  CHECK(study::ParseFinishBy("90m", now) == now + 5400);
+  CHECK(study::ParseFinishBy("2.5h", now) == now + 9000);
+  CHECK(study::ParseFinishBy("600s", now) == now + 600);
+  CHECK(study::ParseFinishBy("17:30", now) == now + 5 * 3600 + 1800);  // later today
+  const std::time_t tomorrow = study::ParseFinishBy("11:15", now);     // passed: tomorrow
+  std::tm t = *std::localtime(&tomorrow);
+  CHECK((t.tm_mday == 7 && t.tm_hour == 11 && t.tm_min == 15 && t.tm_sec == 0));
+  CHECK(study::ParseFinishBy("12:00", now) > now);  // now is passed too
+  for (const char* bad : {"", "90", "90x", "-5m", "0h", "25:00", "12:60", "7:30", "12:30:00",
+                          "soon", "1e9h", "5m later"})
+    CHECK_THROWS_AS(study::ParseFinishBy(bad, now), base::UsageError);
 }

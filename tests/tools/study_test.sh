@@ -6,6 +6,7 @@
 #     uninterrupted study's bit for bit; a second ahhs-study on the same directory is refused;
 #  4. export keeps best genome, generations and summary per run; a new study given the export
 #     runs only what the export lacks, and its runs equal the others bit for bit;
+#     --finish-by starts no run that would end too late;
 #  5. status reports every run;
 #  6. report (ahhs-report study) of the study directory and of its export give the same numbers.
 bin=${1:?usage: study_test.sh BIN_DIR}
@@ -119,6 +120,23 @@ grep -q "3 complete runs taken" $tmp/C.out && grep -q "3 of 4 runs complete, 1 t
 dump_run $tmp/A/pend2/seed-2 >$tmp/a.dump; dump_run $tmp/C/pend2/seed-2 >$tmp/c.dump
 cmp -s $tmp/a.dump $tmp/c.dump || fail "the run made beside an export differs"
 cmp -s $tmp/A/pend1/seed-1/best.json $tmp/C/pend1/seed-1/best.json || fail "taken run's best.json is not the export's"
+# --finish-by: a run that its configuration's run time (here: an exported run's, made to take 2 h)
+# would end too late is not started, and the study says how to go on; a later time starts it.
+cp -r $tmp/E $tmp/E5
+python3 -c "
+f = '$tmp/E5/pend2/seed-1/generations.csv'
+head, *rows = open(f).read().splitlines()
+rows = [r.split(',') for r in rows]
+for r in rows: r[6] = repr(7200 / len(rows))  # wall_time_s of each generation
+open(f, 'w').write('\\n'.join([head] + [','.join(r) for r in rows]) + '\\n')"
+"$S" run $tmp/plan.toml --out $tmp/H $opts --from-export $tmp/E5 --finish-by 1h >$tmp/H.out 2>&1 || fail "--finish-by: $(cat $tmp/H.out)"
+grep -q "not starting pend2/seed-2: about 2.0 h, it would end after [0-9:]* (--finish-by)" $tmp/H.out &&
+  grep -q "^1 runs not started, they would end after [0-9:]* (--finish-by); continue with: .*ahhs-study run --resume $tmp/H" $tmp/H.out &&
+  ! grep -q "\] started" $tmp/H.out || fail "--finish-by 1h: $(cat $tmp/H.out)"
+"$S" run --resume $tmp/H $opts --finish-by 2.5h >$tmp/H.out 2>&1 && grep -q "started pend2/seed-2" $tmp/H.out &&
+  grep -q "^study complete: 4 runs" $tmp/H.out || fail "--finish-by 2.5h: $(cat $tmp/H.out)"
+"$S" run --resume $tmp/H $opts --finish-by soon >$tmp/out 2>&1; [[ $? == 2 && $(wc -l <$tmp/out) == 1 ]] &&
+  grep -q "finish-by soon: give a time of day HH:MM" $tmp/out || fail "--finish-by soon: $(cat $tmp/out)"
 # The exported best genome replays to its stored fitness without the run directory.
 best=$(python3 -c "import json;print(repr(json.load(open('$tmp/E/pend1/seed-1/summary.json'))['best_fitness']))")
 "$bin/ahhs-replay" --genome $tmp/E/pend1/seed-1/best.json --scenario pendulum --duration 20 >$tmp/out 2>&1 ||

@@ -1,5 +1,6 @@
 // ahhs-study: many runs of ahhs-evolve, described by a study plan (docs/evolution.md, "Studies").
 //   ahhs-study run PLAN --out DIR [--parallel K] [--workers-per-run N] [--from-export EXPORT]
+//                                 [--only CONFIGS] [--finish-by HH:MM|DURATION]
 //   ahhs-study run --resume DIR [...]
 //   ahhs-study status DIR
 //   ahhs-study export DIR EXPORT
@@ -72,6 +73,11 @@ int main(int argc, char** argv) {
   run->add_option("--from-export", options.from_export,
                   "take the complete runs of this export (ahhs-study export) instead of running "
                   "them again");
+  std::string finish_by;
+  run->add_option("--finish-by", finish_by,
+                  "start no run that would end after this (HH:MM, or a duration: 90m, 2.5h), "
+                  "at its configuration's mean run time as `status` estimates it; running runs "
+                  "go on; a configuration not yet timed always starts");
   cli::App* status = app.add_subcommand("status", "per run: state, generation, best, ETA");
   status->add_option("study", study_dir, "study directory or export")->required();
   cli::App* exp = app.add_subcommand(
@@ -152,6 +158,8 @@ int main(int argc, char** argv) {
       std::signal(SIGINT, OnSignal);
       std::signal(SIGTERM, OnSignal);
     }
+    if (*run && !finish_by.empty())
+      options.finish_by = st::ParseFinishBy(finish_by, std::time(nullptr));
     if (*run)
       return st::RunStudy(st::OpenOrCreateStudy(plan_file, out_dir, resume_dir), options,
                           g_signals);

@@ -94,6 +94,53 @@ std::string LastLine(const std::string& path) {
   return last;
 }
 
+std::time_t ParseFinishBy(const std::string& text, std::time_t now) {
+  const auto bad = [&] {
+    return base::UsageError("--finish-by " + text +
+                            ": give a time of day HH:MM or a duration such as 90m, 2.5h or 600s");
+  };
+  int hours = 0, minutes = 0, used = 0;
+  if (std::sscanf(text.c_str(), "%2d:%2d%n", &hours, &minutes, &used) == 2 &&
+      used == static_cast<int>(text.size()) && text.size() == 5) {
+    if (hours > 23 || minutes > 59) throw bad();
+    std::tm t = *std::localtime(&now);
+    t.tm_hour = hours;
+    t.tm_min = minutes;
+    t.tm_sec = 0;
+    t.tm_isdst = -1;
+    std::time_t at = std::mktime(&t);
+    if (at <= now) {  // tomorrow
+      ++t.tm_mday;
+      t.tm_isdst = -1;
+      at = std::mktime(&t);
+    }
+    return at;
+  }
+  double amount = 0;
+  char unit = 0;
+  if (std::sscanf(text.c_str(), "%lf%c%n", &amount, &unit, &used) != 2 ||
+      used != static_cast<int>(text.size()) || !(amount > 0) || amount > 1e7)
+    throw bad();
+  const double scale = unit == 's' ? 1 : unit == 'm' ? 60 : unit == 'h' ? 3600 : 0;
+  if (scale == 0) throw bad();
+  return now + static_cast<std::time_t>(amount * scale);
+}
+
+std::map<std::string, double> RunTimeEstimates(const StudyDir& study) {
+  std::map<std::string, std::pair<double, int>> here, elsewhere;  // sum, count
+  for (const auto& run : study.Runs()) {
+    const RunState s = study.State(run);
+    if (s.kind != RunStateKind::kComplete) continue;
+    auto& [sum, n] = (s.exported_only ? elsewhere : here)[run.config];
+    sum += s.wall_time;
+    ++n;
+  }
+  std::map<std::string, double> estimates;
+  for (const auto& [config, sum_n] : elsewhere) estimates[config] = sum_n.first / sum_n.second;
+  for (const auto& [config, sum_n] : here) estimates[config] = sum_n.first / sum_n.second;
+  return estimates;
+}
+
 // ahhs-evolve's resolved configuration (--show-config) of a config file.
 json ResolveConfig(const std::string& evolve, const std::string& config_file) {
   const std::string command =
@@ -171,14 +218,30 @@ int RunStudy(const StudyDir& study, RunOptions options, const std::atomic<int>& 
       options.parallel, options.workers_per_run);
   std::fflush(stdout);
 
+  const auto estimates =
+      options.finish_by != 0 ? RunTimeEstimates(study) : std::map<std::string, double>{};
+  char finish_by[16] = "";
+  if (options.finish_by != 0)
+    std::strftime(finish_by, sizeof finish_by, "%H:%M", std::localtime(&options.finish_by));
   ahhs::base::ChildProcesses children;
   std::map<std::size_t, Running> running;  // by child index
   std::size_t next = 0;
-  int failed = 0;
+  int failed = 0, deferred = 0;
   while ((next < queue.size() || !running.empty()) && stop == 0) {
     while (running.size() < static_cast<std::size_t>(options.parallel) && next < queue.size() &&
            stop == 0) {
       const StudyRun& run = queue[next++];
+      // --finish-by: a run whose configuration's run time would end it too late waits for the
+      // next session (time only moves on, so it never fits later in this one).
+      if (const auto e = estimates.find(run.config);
+          e != estimates.end() && static_cast<double>(std::time(nullptr)) + e->second >
+                                      static_cast<double>(options.finish_by)) {
+        std::printf("[%s] not starting %s: about %s, it would end after %s (--finish-by)\n",
+                    Stamp().c_str(), run.Name().c_str(), Seconds(e->second).c_str(), finish_by);
+        std::fflush(stdout);
+        ++deferred;
+        continue;
+      }
       bool started = false;
       try {
         started = StartRun(study, run, options, stop, evolve, &children);
@@ -245,6 +308,13 @@ int RunStudy(const StudyDir& study, RunOptions options, const std::atomic<int>& 
     std::printf("%d runs failed (see: %s/ahhs-study status %s); run --resume to retry them\n",
                 failed, ahhs::base::ExecutableDir().c_str(), study.dir().c_str());
     return kExitFailure;
+  }
+  if (deferred > 0) {
+    std::printf(
+        "%d runs not started, they would end after %s (--finish-by); continue with: "
+        "%s/ahhs-study run --resume %s\n",
+        deferred, finish_by, ahhs::base::ExecutableDir().c_str(), study.dir().c_str());
+    return 0;
   }
   if (complete < static_cast<int>(runs.size())) {
     std::printf(

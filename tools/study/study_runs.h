@@ -4,6 +4,8 @@
 #pragma once
 
 #include <atomic>
+#include <ctime>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -22,7 +24,19 @@ struct RunOptions {
   int port_base = 7700;
   std::string from_export;
   std::vector<std::string> only;  // configurations to run now; empty: all
+  // Seconds since the epoch (0: none): start no run whose estimated time (RunTimeEstimates)
+  // would end it after this; running runs are not stopped.
+  std::time_t finish_by = 0;
 };
+
+// --finish-by's time: "HH:MM" (the next such local time, today or tomorrow) or a duration from
+// `now` ("90m", "2.5h", "600s"), as seconds since the epoch. Throws base::UsageError.
+std::time_t ParseFinishBy(const std::string& text, std::time_t now);
+
+// The time one run of each configuration takes here, as `status` counts a waiting run's: the
+// mean wall time of its complete runs made here, else of its exported runs (made elsewhere); no
+// entry when it has neither.
+std::map<std::string, double> RunTimeEstimates(const StudyDir& study);
 
 // The wall-clock time of day, HH:MM:SS, that begins each line of the scheduler.
 std::string Stamp();

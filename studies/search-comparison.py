@@ -19,7 +19,9 @@ best judged on held-out episodes (docs/results.md, "Searches beyond the GA"), in
 
 CMA-ES and MAP-Elites run with examples/optimizers/, each run seeded by its number (optimizer and
 evaluation seeds). `run` is resumable: stop it with Ctrl-C or `kill -INT PID` (it passes the
-signal on to its run), run it again and every run goes on from its checkpoint. A finished run is exported to studies/search-comparison/[SETTING/]runs/SEARCH/seed-N/
+signal on to its run), run it again and every run goes on from its checkpoint. `--finish-by
+HH:MM|DURATION` starts or resumes no run that would end after that time at the mean run time of
+its search's exported runs (for machines that go away at a known time). A finished run is exported to studies/search-comparison/[SETTING/]runs/SEARCH/seed-N/
 (its best.json, generations.csv, post-eval.json and, for MAP-Elites, archive.json: tens of kB,
 committed), and a run with an export is not run again, so a fresh machine goes on where the last
 one stopped. `report` reads the exports, tests the held-out medians with two-sided Wilcoxon
@@ -31,9 +33,12 @@ import os
 import signal
 import subprocess
 import sys
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(SOURCE, "python"))
+from ahhs.search import parse_finish_by  # noqa: E402
 SEEDS = range(1, 11)
 GENERATIONS = 200
 POST_EVAL = 50
@@ -90,8 +95,27 @@ def export(run_dir, setting, name, seed):
             os.replace(os.path.join(target, f + ".tmp"), os.path.join(target, f))
 
 
+def generations_done(run_dir):
+    csv = os.path.join(run_dir, "generations.csv")
+    return max(0, sum(1 for _ in open(csv)) - 1) if os.path.exists(csv) else 0
+
+
+def run_time(setting, name):
+    """The mean wall time of a search's exported runs in this setting (None without one)."""
+    times = []
+    for seed in SEEDS:
+        csv = os.path.join(setting["out"], "runs", name, "seed-%d" % seed, "generations.csv")
+        if os.path.exists(csv):
+            with open(csv) as f:
+                rows = f.read().splitlines()
+            column = rows[0].split(",").index("wall_time_s")
+            times.append(sum(float(r.split(",")[column]) for r in rows[1:]))
+    return sum(times) / len(times) if times else None
+
+
 def run(args):
     setting = SETTINGS[args.setting]
+    deferred = 0
     for seed in SEEDS:
         for name, (script, *options) in setting["searches"].items():
             run_dir = os.path.join(args.out, args.setting, name, "seed-%d" % seed)
@@ -104,6 +128,17 @@ def run(args):
             if complete(os.path.join(setting["out"], "runs", name, "seed-%d" % seed), setting):
                 continue
             if not complete(run_dir, setting):
+                estimate = run_time(setting, name)
+                if args.finish_by is not None and estimate is not None:
+                    left = estimate * (1 - generations_done(run_dir) / GENERATIONS)
+                    if time.time() + left > args.finish_by:
+                        print("%s %s seed %d: not starting, about %.0f min left, it would end "
+                              "after %s (--finish-by)" % (
+                                  args.setting, name, seed, left / 60,
+                                  time.strftime("%H:%M", time.localtime(args.finish_by))),
+                              flush=True)
+                        deferred += 1
+                        continue
                 print("%s %s seed %d" % (args.setting, name, seed), flush=True)
                 search = subprocess.Popen(argv, stdout=subprocess.DEVNULL)
                 try:
@@ -117,6 +152,8 @@ def run(args):
                 if code != 0:
                     sys.exit("%s %s seed %d failed (exit %d)" % (args.setting, name, seed, code))
             export(run_dir, setting, name, seed)
+    if deferred:
+        print("%d runs not started (--finish-by); the same command goes on" % deferred)
 
 
 def post_eval(bin_dir, genome, out_json):
@@ -222,7 +259,15 @@ def main():
     p.add_argument("--bin", default=os.path.join(SOURCE, "build", "bin"))
     p.add_argument("--workers", type=int, default=2)
     p.add_argument("--lcm-url", default="udpm://239.255.42.90:7795?ttl=0")
+    p.add_argument("--finish-by", metavar="HH:MM|DURATION",
+                   help="run: start or resume no run that would end after this, at the mean run "
+                   "time of its search's exported runs (as ahhs-study run --finish-by)")
     a = p.parse_args()
+    if a.finish_by is not None:
+        try:
+            a.finish_by = parse_finish_by(a.finish_by, time.time())
+        except ValueError as e:
+            p.error(str(e))
     # Stopped by `kill -INT` or `kill` even when a script started it in the background (its shell
     # has it ignore SIGINT): each run stops in order and resumes.
     signal.signal(signal.SIGINT, signal.default_int_handler)

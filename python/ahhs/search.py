@@ -67,6 +67,30 @@ def interrupted(run_dir):
     sys.exit(130)
 
 
+def parse_finish_by(text, now):
+    """A time to finish by, as `ahhs-study run --finish-by` takes it: "HH:MM" (the next such local
+    time, today or tomorrow) or a duration from `now` ("90m", "2.5h", "600s"); seconds since the
+    epoch. ValueError otherwise."""
+    import re
+    import time
+    bad = ValueError("--finish-by %s: give a time of day HH:MM or a duration such as 90m, 2.5h "
+                     "or 600s" % text)
+    clock = re.fullmatch(r"(\d\d):(\d\d)", text)
+    if clock:
+        hours, minutes = int(clock.group(1)), int(clock.group(2))
+        if hours > 23 or minutes > 59:
+            raise bad
+        t = time.localtime(now)
+        at = time.mktime((t.tm_year, t.tm_mon, t.tm_mday, hours, minutes, 0, 0, 0, -1))
+        if at <= now:  # tomorrow
+            at = time.mktime((t.tm_year, t.tm_mon, t.tm_mday + 1, hours, minutes, 0, 0, 0, -1))
+        return at
+    duration = re.fullmatch(r"(\d+(?:\.\d*)?)([smh])", text)
+    if not duration or not 0 < float(duration.group(1)) <= 1e7:
+        raise bad
+    return now + float(duration.group(1)) * {"s": 1, "m": 60, "h": 3600}[duration.group(2)]
+
+
 def write_json_atomically(path, doc):
     """For after_generation's files: never half-written."""
     import json

@@ -58,6 +58,23 @@ def wait_for_service_to_end(run_dir, seconds=30):
     raise AssertionError("the killed search's ahhs-evaluate did not end")
 
 
+class FinishByTest(unittest.TestCase):
+    def test_a_time_of_day_or_a_duration_from_now_else_a_value_error(self):
+        from ahhs.search import parse_finish_by
+        noon = time.mktime((2026, 12, 6, 12, 0, 0, 0, 0, -1))
+        self.assertEqual(parse_finish_by("90m", noon), noon + 5400)
+        self.assertEqual(parse_finish_by("2.5h", noon), noon + 9000)
+        self.assertEqual(parse_finish_by("600s", noon), noon + 600)
+        self.assertEqual(parse_finish_by("17:30", noon), noon + 5 * 3600 + 1800)
+        tomorrow = time.localtime(parse_finish_by("11:15", noon))
+        self.assertEqual((tomorrow.tm_mday, tomorrow.tm_hour, tomorrow.tm_min), (7, 11, 15))
+        self.assertGreater(parse_finish_by("12:00", noon), noon)
+        for bad in ("", "90", "90x", "-5m", "0h", "25:00", "12:60", "7:30", "12:30:00", "soon",
+                    "1e9h", "5m later"):
+            with self.assertRaises(ValueError, msg=bad):
+                parse_finish_by(bad, noon)
+
+
 class SearchTest(unittest.TestCase):
     def run_killed_and_whole(self, script, options, generations, evaluation=()):
         tmp = tempfile.mkdtemp(prefix="ahhs-search-")

@@ -35,8 +35,8 @@ template <class Msg>
 std::array<const std::string*, 0> TextFields(const Msg&) {
   return {};
 }
-inline std::array<const std::string*, 3> TextFields(const eval_request_t& m) {
-  return {&m.run, &m.worker, &m.scenario};
+inline std::array<const std::string*, 4> TextFields(const eval_request_t& m) {
+  return {&m.run, &m.worker, &m.scenario, &m.physics};
 }
 inline std::array<const std::string*, 3> TextFields(const eval_result_t& m) {
   return {&m.run, &m.worker, &m.message};
@@ -48,8 +48,8 @@ inline std::array<const std::string*, 2> TextFields(const genome_want_t& m) {
 inline std::array<const std::string*, 1> TextFields(const module_status_t& m) {
   return {&m.message};
 }
-inline std::array<const std::string*, 1> TextFields(const sim_control_t& m) {
-  return {&m.scenario};
+inline std::array<const std::string*, 2> TextFields(const sim_control_t& m) {
+  return {&m.scenario, &m.physics};
 }
 inline std::array<const std::string*, 3> TextFields(const worker_status_t& m) {
   return {&m.worker, &m.host, &m.run};

@@ -19,6 +19,7 @@ namespace cli = base::cli;
 
 void AddEvaluateOptions(cli::App& app, EvaluateOptions* o) {
   o->scenario.Add(app, "", "episode length in simulated seconds (default: the scenario's)");
+  o->scenario.AddPhysics(app);
   o->envelope.Add(app,
                   "envelope of noise of every episode: none, paper or wide (docs/scenarios.md)");
   app.add_option("--variant", o->variant, "the shape of vector genomes: ahhs1 or ahhs2")
@@ -61,10 +62,11 @@ void CheckCombinations(const cli::App& app, const EvaluateOptions& o) {
   if (!o.out_dir.empty() && !o.resume_dir.empty())
     throw std::invalid_argument("give --out or --resume, not both");
   if (!o.resume_dir.empty()) {
-    for (const char* name : {"--scenario", "--docking", "--joints", "--modules", "--duration",
-                             "--variant", "--hormones", "--rules", "--trials", "--aggregate",
-                             "--seed", "--population", "--generations", "--optimizer",
-                             "--overwrite", "--pendulum.actuator-gain", "--pendulum.walls"})
+    for (const char* name :
+         {"--scenario", "--docking", "--joints", "--modules", "--duration", "--variant",
+          "--hormones", "--rules", "--trials", "--aggregate", "--seed", "--population",
+          "--generations", "--optimizer", "--overwrite", "--pendulum.actuator-gain",
+          "--pendulum.walls", "--physics"})
       if (app.count(name))
         throw std::invalid_argument(std::string(name) +
                                     " cannot be given with --resume: the run keeps its own");

@@ -86,6 +86,8 @@ json ConfigToJson(const EvolveConfig& c) {
   if (c.validation > 0)
     doc["validation"] = {{"episodes", c.validation}, {"candidates", c.validation_candidates}};
   if (!c.optimizer.empty()) doc["optimizer"] = c.optimizer;
+  // An earlier physics kept by name (the store records the physics of every run too).
+  if (!c.scenario.physics.empty()) doc["physics"] = c.scenario.physics;
   return doc;
 }
 
@@ -120,6 +122,11 @@ EvolveConfig ConfigFromJson(const json& doc) {
       c.validation_candidates = doc.at("validation").at("candidates").get<int>();
     }
     if (doc.contains("optimizer")) c.optimizer = doc.at("optimizer").get<std::string>();
+    if (doc.contains("physics")) {
+      c.scenario.physics = doc.at("physics").get<std::string>();
+      if (c.scenario.physics == sim::PhysicsVersion(c.scenario.kind, c.scenario.docking))
+        c.scenario.physics.clear();
+    }
   } catch (const json::exception& e) {
     throw std::invalid_argument(std::string("run config: ") + e.what());
   }

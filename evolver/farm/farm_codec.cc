@@ -65,6 +65,16 @@ std::string JobFromMessage(const eval_request_t& m, FarmJob* out) {
   return "";
 }
 
+std::string PhysicsRefusal(const eval_request_t& m) {
+  if (m.scenario != "gait" && m.scenario != "pendulum") return "";
+  if (m.joints != sim_control_t::JOINTS_DAMPED && m.joints != sim_control_t::JOINTS_FIXED)
+    return "";
+  const sim::DockingKind docking = m.joints == sim_control_t::JOINTS_FIXED
+                                       ? sim::DockingKind::kFixed
+                                       : sim::DockingKind::kDamped;
+  return sim::CheckPhysics(sim::ParseScenarioKind(m.scenario), docking, m.physics);
+}
+
 genome_chunk_t PieceMessage(const GenomePiece& p) {
   genome_chunk_t m;
   m.utime = bus::NowUtime();

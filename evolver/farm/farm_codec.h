@@ -35,6 +35,11 @@ eval_request_t RequestMessage(const FarmJob& job);
 // foreign version itself.
 std::string JobFromMessage(const eval_request_t& msg, FarmJob* out);
 
+// Why a worker of this build cannot evaluate the request at all: it names a physics version this
+// build does not simulate (sim::CheckPhysics). "" otherwise, also for a request that is bad for
+// another reason (JobFromMessage says why).
+std::string PhysicsRefusal(const eval_request_t& msg);
+
 genome_chunk_t PieceMessage(const GenomePiece& piece);
 // Returns "" or why the piece is unusable (CheckPiece).
 std::string PieceFromMessage(const genome_chunk_t& msg, GenomePiece* out);

@@ -16,8 +16,9 @@ namespace ahhs::evolver {
 // Bumped whenever a message of the farm changes meaning. Workers refuse requests of another
 // version; evolvers ignore workers of another version (both say so).
 // 3: the envelope of noise in EVAL/REQUEST; 4: the behaviour descriptor in EVAL/RESULT, the
-// pendulum's choices in EVAL/REQUEST; 5: envelope_command_delay; 6: envelope_start_hinge.
-inline constexpr int kFarmProtocolVersion = 6;
+// pendulum's choices in EVAL/REQUEST; 5: envelope_command_delay; 6: envelope_start_hinge; 7: the
+// physics version by name (a worker refuses one its build does not simulate).
+inline constexpr int kFarmProtocolVersion = 7;
 inline std::string FarmVersionLine() {  // for --version
   return "farm protocol " + std::to_string(kFarmProtocolVersion);
 }

@@ -56,6 +56,16 @@ void WorkerNode::OnRequest(const eval_request_t& msg) {
     SendResult(answer);
     return;
   }
+  // A run measured in a physics this build does not simulate: never an answer in another one.
+  if (const std::string why = PhysicsRefusal(msg); !why.empty()) {
+    ++counters_.refused;
+    answer.status = FarmResult::Status::kRefused;
+    answer.message = "worker " + id_ + ": " + why;
+    std::cerr << "ahhs-worker: refused job " << msg.job << " of run " << msg.run << ": " << why
+              << '\n';
+    SendResult(answer);
+    return;
+  }
   if (!seen_.insert({msg.run, msg.job, msg.attempt}).second) return;  // a repeat
   FarmJob job;
   const std::string error = JobFromMessage(msg, &job);

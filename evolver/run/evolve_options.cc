@@ -19,6 +19,7 @@ void AddEvolveOptions(cli::App& app, EvolveOptions* o) {
   base::AddStrictTomlConfig(app, "preset file (TOML, e.g. configs/gait-damped-ahhs2-30.toml)");
   o->scenario.Add(app, "",
                   "episode length, simulated seconds (0: the scenario's, 60 s gait / 3000 ticks)");
+  o->scenario.AddPhysics(app);
   app.add_option("--variant", o->variant, "controller: ahhs1 or ahhs2")
       ->check(cli::IsMember({"ahhs1", "ahhs2"}))
       ->capture_default_str();
@@ -92,6 +93,7 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
                              "--aggregate",
                              "--pendulum.actuator-gain",
                              "--pendulum.walls",
+                             "--physics",
                              kRunEndOptionNames[0],
                              kRunEndOptionNames[1],
                              kRunEndOptionNames[2],
@@ -110,18 +112,22 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
       throw std::invalid_argument(o.resume_dir + " is a run of " + config->optimizer +
                                   " recorded by ahhs-evaluate, not of the GA: resume it with "
                                   "that optimizer");
-    const std::string physics =
-        sim::PhysicsVersion(config->scenario.kind, config->scenario.docking);
-    if (!store->physics().empty() && store->physics() != physics)
-      throw std::invalid_argument(o.resume_dir + " was made with the " +
-                                  sim::ScenarioName(config->scenario.kind) + " physics of " +
-                                  store->physics() + ", this build has " + physics +
-                                  " (CHANGELOG.md): its fitnesses would mix two physics; start a "
-                                  "new run");
+    // A run goes on in the physics it was made with, if this build still simulates it.
+    const std::string own = sim::PhysicsVersion(config->scenario.kind, config->scenario.docking);
+    if (!store->physics().empty()) {
+      if (!sim::CheckPhysics(config->scenario.kind, config->scenario.docking, store->physics())
+               .empty())
+        throw std::invalid_argument(
+            o.resume_dir + " was made with the " + sim::ScenarioName(config->scenario.kind) +
+            " physics of " + store->physics() + ", this build has " + own +
+            " and does not simulate that one (CHANGELOG.md names the release that does): its "
+            "fitnesses would mix two physics; resume it with that release or start a new run");
+      config->scenario.physics = store->physics() == own ? "" : store->physics();
+    }
     if (store->physics().empty() && !o.show_config)
       std::cerr << "ahhs-evolve: note: " << o.resume_dir
-                << " does not record its physics (an older build made it); resuming with "
-                << physics << '\n';
+                << " does not record its physics (an older build made it); resuming with " << own
+                << '\n';
     if (o.show_config) {
       std::cout << ConfigToJson(*config).dump(2) << '\n';
       return nullptr;
@@ -168,8 +174,7 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
     const std::string run_id = base::HostName() + "-" + std::to_string(getpid()) + "-" +
                                std::to_string(std::time(nullptr));
     store = RunStore::Create(o.out_dir, run_id, config->seed, ConfigToJson(*config),
-                             sim::PhysicsVersion(config->scenario.kind, config->scenario.docking),
-                             o.overwrite);
+                             sim::PhysicsOf(config->scenario), o.overwrite);
   }
   return store;
 }

@@ -48,6 +48,7 @@ void PrintRunSummary(const RunStore& store, const EvolveConfig& config) {
     replay += " --duration " + base::ExactDouble(config.scenario.duration);
   }
   replay += sim::EnvelopeArguments(config.scenario.envelope);
+  if (!config.scenario.physics.empty()) replay += " --physics " + config.scenario.physics;
   replay += " --genome " + store.dir() + "/best.json --seed " + std::to_string(best.eval_seed);
   std::printf("done: %d generations in %s\n", config.ga.generations, store.dir().c_str());
   if (best.trials.empty()) {

@@ -52,6 +52,20 @@ std::vector<std::string> ReplayablePhysics(ScenarioKind kind, DockingKind dockin
   return versions;
 }
 
+std::string PhysicsOf(const ScenarioConfig& config) {
+  return config.physics.empty() ? PhysicsVersion(config.kind, config.docking) : config.physics;
+}
+
+std::string CheckPhysics(ScenarioKind kind, DockingKind docking, const std::string& physics) {
+  if (physics.empty()) return "";
+  const auto versions = ReplayablePhysics(kind, docking);
+  if (std::find(versions.begin(), versions.end(), physics) != versions.end()) return "";
+  std::string list;
+  for (const auto& v : versions) list += (list.empty() ? "" : ", ") + v;
+  return std::string("physics: this build simulates the ") + ScenarioName(kind) + " physics of " +
+         list + ", not " + physics + " (CHANGELOG.md names the release that does)";
+}
+
 std::string CheckConfig(const ScenarioConfig& c) {
   if (c.kind != ScenarioKind::kGait && c.kind != ScenarioKind::kPendulum)
     return "scenario: unknown";
@@ -64,16 +78,7 @@ std::string CheckConfig(const ScenarioConfig& c) {
     return "physics step: 0 (the scenario's) or up to 0.05 s";
   if (!std::isfinite(c.friction_scale) || c.friction_scale <= 0 || c.friction_scale > 10)
     return "friction scale: above 0, at most 10";
-  if (!c.physics.empty()) {
-    const auto versions = ReplayablePhysics(c.kind, c.docking);
-    if (std::find(versions.begin(), versions.end(), c.physics) == versions.end()) {
-      std::string list;
-      for (const auto& v : versions) list += (list.empty() ? "" : ", ") + v;
-      return std::string("physics: this build simulates the ") + ScenarioName(c.kind) +
-             " physics of " + list + ", not " + c.physics +
-             " (CHANGELOG.md names the release that does)";
-    }
-  }
+  if (std::string error = CheckPhysics(c.kind, c.docking, c.physics); !error.empty()) return error;
   if (!std::isfinite(c.pendulum.actuator_gain) || c.pendulum.actuator_gain < 1 ||
       c.pendulum.actuator_gain > 100)
     return "pendulum.actuator-gain: from 1 to 100";

@@ -52,8 +52,9 @@ struct ScenarioConfig {
   // tell a robust behaviour from one that deterministic chaos happened to favour.
   double friction_scale = 1;
   // The physics version to simulate: "" for this build's (PhysicsVersion), or an earlier one
-  // this build still replays (ReplayablePhysics). Never on the wire: only a direct replay sets
-  // it, to reproduce a run made with an earlier physics.
+  // this build still simulates (ReplayablePhysics): a replay of a run made with it, or a run
+  // that keeps it (ahhs-evolve --physics). On the wire in RESET and EVAL/REQUEST, always by
+  // name (PhysicsOf).
   std::string physics;
   // The envelope of noise every episode of this configuration is perturbed with (a scenario
   // setting, on the wire in RESET and EVAL/REQUEST: sim/core/envelope.h).
@@ -72,6 +73,10 @@ const char* DockingName(DockingKind docking);
 const char* PhysicsVersion(ScenarioKind kind, DockingKind docking);
 // The physics versions this build can simulate for a scenario: its own first, then earlier ones.
 std::vector<std::string> ReplayablePhysics(ScenarioKind kind, DockingKind docking);
+// The physics version a config simulates, by name: config.physics, or this build's own.
+std::string PhysicsOf(const ScenarioConfig& config);
+// "" when this build simulates `physics` ("" is its own), else a message that lists what it does.
+std::string CheckPhysics(ScenarioKind kind, DockingKind docking, const std::string& physics);
 
 // Checks a config; returns "" or a message naming the bad field.
 std::string CheckConfig(const ScenarioConfig& config);

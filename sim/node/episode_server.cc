@@ -40,6 +40,9 @@ void EpisodeServer::OnControl(const sim_control_t& m) {
       if (error.empty() && !config.envelope.none())
         error = "a physical organism cannot be given an envelope of noise (" +
                 EnvelopeName(config.envelope) + "): the real world is its own";
+      if (error.empty() && !config.physics.empty())
+        error = "a physical organism cannot be asked for the earlier physics " + config.physics +
+                ": the real world is its own";
       if (!error.empty()) {
         drops_.Count("SIM/CONTROL", "RESET refused");
         say_(ep + " refused: " + error);

@@ -52,15 +52,26 @@ struct ScenarioOptions {
         ->check(NameCheck("WALLS", [](const std::string& s) { ParsePendulumWalls(s); }))
         ->capture_default_str();
   }
+  // --physics VERSION, for the tools that evaluate for a run (ahhs-evolve, ahhs-evaluate): keep
+  // an earlier physics this build still simulates (ahhs-sim's --physics is another option).
+  void AddPhysics(base::cli::App& app) {
+    app.add_option("--physics", physics,
+                   "the physics version to evaluate in: this build's (default) or an earlier one "
+                   "it still simulates (`--version` lists them; docs/reference.md), so that a "
+                   "study keeps one physics across builds");
+  }
   bool duration_given() const { return duration_opt_ && duration_opt_->count() > 0; }
-  // The configuration the options name (the scenario's own checks still apply: CheckConfig).
+  // The configuration the options name (the scenario's own checks still apply: CheckConfig,
+  // which also refuses a physics this build does not simulate).
   ScenarioConfig Config() const {
     ScenarioConfig c =
         MakeScenarioConfig(ParseScenarioKind(scenario), ParseDocking(docking), modules, duration);
     c.pendulum.actuator_gain = pendulum_gain;
     c.pendulum.walls = ParsePendulumWalls(pendulum_walls);
+    c.physics = physics == PhysicsVersion(c.kind, c.docking) ? "" : physics;
     return c;
   }
+  std::string physics;  // "" or this build's: its own
 
  private:
   template <typename Parse>

@@ -119,7 +119,7 @@ std::int8_t DockingToWire(DockingKind docking) {
 std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_modules,
                                std::int8_t docking, double duration, const Envelope& envelope,
                                double pendulum_actuator_gain, std::int8_t pendulum_walls,
-                               ScenarioConfig* config) {
+                               const std::string& physics, ScenarioConfig* config) {
   ScenarioConfig c;
   if (scenario == "gait") {
     c.kind = ScenarioKind::kGait;
@@ -142,6 +142,7 @@ std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_mod
   // 0 is the default too, so that a RESET made field by field without it asks for the scenario.
   c.pendulum.actuator_gain = pendulum_actuator_gain == 0 ? 1 : pendulum_actuator_gain;
   c.pendulum.walls = pendulum_walls == 1 ? PendulumWalls::kSoft : PendulumWalls::kRigid;
+  c.physics = physics == PhysicsVersion(c.kind, c.docking) ? "" : physics;
   const std::string error = CheckConfig(c);
   if (!error.empty()) return error;
   *config = c;

@@ -42,14 +42,17 @@ inline constexpr std::int64_t kSceneEveryTicks = 20;
 inline bool SceneDue(std::int64_t tick) { return tick % kSceneEveryTicks == 0; }
 
 // The one wire form of a ScenarioConfig: the fields (scenario, num_modules, docking, duration,
-// the envelope's half-widths, the pendulum's choices) that sim_control_t (RESET) and
-// eval_request_t both carry.
+// the envelope's half-widths, the pendulum's choices, the physics version) that sim_control_t
+// (RESET) and eval_request_t both carry. The physics always travels by name (this build's when
+// the config asks for "its own"), so that a receiver of another build never answers in another
+// physics unnoticed.
 std::int8_t DockingToWire(DockingKind docking);
-// Checks the fields and makes the config; returns "" or why they are refused.
+// Checks the fields and makes the config (physics "" or this build's own becomes ""); returns ""
+// or why they are refused.
 std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_modules,
                                std::int8_t docking, double duration, const Envelope& envelope,
                                double pendulum_actuator_gain, std::int8_t pendulum_walls,
-                               ScenarioConfig* config);
+                               const std::string& physics, ScenarioConfig* config);
 template <class Message>
 void ScenarioToWire(const ScenarioConfig& config, Message* m) {
   m->scenario = ScenarioName(config.kind);
@@ -70,6 +73,7 @@ void ScenarioToWire(const ScenarioConfig& config, Message* m) {
   m->envelope_start_hinge = e.start_hinge;
   m->pendulum_actuator_gain = config.pendulum.actuator_gain;
   m->pendulum_walls = config.pendulum.walls == PendulumWalls::kSoft ? 1 : 0;
+  m->physics = PhysicsOf(config);
 }
 template <class Message>
 std::string ScenarioFromWire(const Message& m, ScenarioConfig* config) {
@@ -86,7 +90,7 @@ std::string ScenarioFromWire(const Message& m, ScenarioConfig* config) {
   e.command_delay = m.envelope_command_delay;
   e.start_hinge = m.envelope_start_hinge;
   return ScenarioFromFields(m.scenario, m.num_modules, m.joints, m.duration, e,
-                            m.pendulum_actuator_gain, m.pendulum_walls, config);
+                            m.pendulum_actuator_gain, m.pendulum_walls, m.physics, config);
 }
 
 // Validates a RESET and turns it into a scenario config; returns "" or why it is refused.

@@ -277,6 +277,26 @@ $E --resume $tmp/older >$tmp/out 2>&1
 sqlite3 $tmp/older/run.sqlite "DELETE FROM run WHERE key = 'physics'; $unchain"
 $E --resume $tmp/older >$tmp/out 2>&1 && grep -q "does not record its physics" $tmp/out ||
   fail "run without physics: $(cat $tmp/out)"
+# --physics keeps an earlier physics this build simulates: the run records it, its workers evaluate
+# in it (EVAL/REQUEST names it), a resume keeps it, and its best replays in it bit for bit, by
+# ahhs-replay and by the ahhs-launch line the run prints; one it does not simulate is refused.
+gait_pin="--scenario gait --docking fixed --hormones 3 --rules 6 --population 4 --generations 2 --duration 10 --seed 3 --lcm-url $url --workers 1"
+$E $gait_pin --physics 2026-12-04 --out $tmp/pinned >$tmp/out 2>&1 || fail "--physics 2026-12-04: $(cat $tmp/out)"
+[[ $(sqlite3 $tmp/pinned/run.sqlite "SELECT value FROM run WHERE key = 'physics'") == 2026-12-04 ]] ||
+  fail "pinned physics not recorded"
+launch=$(sed -n 's/^replay the best genome: //p' $tmp/out)
+[[ $launch == *" --physics 2026-12-04 "* ]] || fail "launch line without the physics: $launch"
+best=$(sed -n 's/^best fitness: \([^ ]*\).*/\1/p' $tmp/out)
+$launch --arena-kind fused 2>&1 | grep -q "^fitness: $best\$" || fail "the launch line does not reproduce $best"
+"$bin/ahhs-replay" $tmp/pinned >$tmp/rep 2>&1 && grep -q "^physics: 2026-12-04 (this build's is" $tmp/rep &&
+  grep -q "reproduced exactly" $tmp/rep || fail "replay of a pinned run: $(cat $tmp/rep)"
+$E --resume $tmp/pinned >$tmp/out 2>&1 || fail "resume of a pinned run: $(cat $tmp/out)"
+$E $gait_pin --out $tmp/own >/dev/null 2>&1 || fail "the same run in this build's physics"
+[[ $(cut -d, -f2-5 $tmp/pinned/generations.csv) != $(cut -d, -f2-5 $tmp/own/generations.csv) ]] ||
+  fail "the pinned run's fitnesses are this build's physics'"
+$E $gait_pin --physics 1999-01-01 --out $tmp/never >$tmp/out 2>&1
+[[ $? == 1 && ! -e $tmp/never ]] && grep -q "this build simulates the gait physics of .*, not 1999-01-01" $tmp/out ||
+  fail "--physics 1999-01-01: $(cat $tmp/out)"
 
 echo "== 5. runs are isolated"
 "$bin/ahhs-worker" --lcm-url "$url" --id stranger --run someone-else >$tmp/stranger.out 2>&1 &

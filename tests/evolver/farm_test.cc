@@ -15,6 +15,7 @@
 #include "evolver/farm/farm_evaluator.h"
 #include "evolver/farm/worker_node.h"
 #include "evolver/ga/ga.h"
+#include "sim/core/constants.h"
 
 using namespace ahhs;
 using namespace ahhs::evolver;
@@ -242,6 +243,55 @@ TEST_CASE("a worker refuses a request of another protocol version and says why")
   CHECK_THAT(results[0].message, Catch::Contains("version"));
   CHECK(worker.counters().refused == 1);
   CHECK(worker.counters().evaluations == 0);
+}
+
+TEST_CASE(
+    "a worker refuses a job in a physics its build does not simulate, and takes an earlier one it "
+    "does") {
+  bus::LcmBus bus("memq://");
+  std::vector<std::string> evaluated_in;
+  WorkerNode worker(&bus, "w", "host", [&](const FarmJob& j) {
+    evaluated_in.push_back(sim::PhysicsOf(j.config));
+    return Good(j);
+  });
+  std::vector<eval_result_t> results;
+  auto subscription = bus::SubscribeTyped<eval_result_t>(
+      bus, bus::kEvalResultChannel,
+      [&](const std::string&, const eval_result_t& r) { results.push_back(r); });
+  Batch batch(1);
+  const EncodedGenome encoded = EncodeGenome(batch.genomes[0]);
+  const auto pieces = SplitGenome(encoded.hash, encoded.bytes);
+  for (const auto& piece : pieces)
+    bus::PublishTyped(bus, bus::kEvalGenomeChannel, PieceMessage(piece));
+  FarmJob job;
+  job.run = "r";
+  job.worker = "w";
+  job.config = sim::MakeScenarioConfig(sim::ScenarioKind::kGait, sim::DockingKind::kFixed, 5, 1);
+  job.genome_hash = encoded.hash;
+  job.genome_bytes = static_cast<int>(encoded.bytes.size());
+  job.genome_chunks = static_cast<int>(pieces.size());
+  job.deadline_utime = bus::NowUtime() + 60000000;
+  eval_request_t future = RequestMessage(job);
+  CHECK(future.physics == sim::kGaitFixedPhysicsVersion);  // by name, never ""
+  future.physics = "2999-01-01";
+  future.job = 1;
+  bus::PublishTyped(bus, bus::kEvalRequestChannel, future);
+  job.job = 2;
+  job.config.physics = sim::kGaitChainColdPhysicsVersion;
+  bus::PublishTyped(bus, bus::kEvalRequestChannel, RequestMessage(job));
+  for (int i = 0; i < 20 && results.size() < 2; ++i) {
+    worker.Poll(std::chrono::milliseconds(10));
+    bus.Handle(std::chrono::milliseconds(0));
+  }
+  REQUIRE(results.size() == 2);
+  CHECK(results[0].job == 1);
+  CHECK(results[0].status == eval_result_t::REFUSED);
+  CHECK_THAT(results[0].message, Catch::Contains("this build simulates the gait physics of") &&
+                                     Catch::Contains("not 2999-01-01"));
+  CHECK(results[1].job == 2);
+  CHECK(results[1].status == eval_result_t::OK);
+  CHECK(evaluated_in == std::vector<std::string>{std::string(sim::kGaitChainColdPhysicsVersion)});
+  CHECK(worker.counters().refused == 1);
 }
 
 TEST_CASE("without any worker the farm gives up with a clear error, Ctrl-C interrupts", "[wall]") {

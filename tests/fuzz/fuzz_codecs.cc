@@ -26,6 +26,7 @@ namespace {
 void Request(const std::uint8_t* data, std::size_t size) {
   eval_request_t m;
   if (!bus::Decode(data, size, &m)) return;
+  if (!evolver::PhysicsRefusal(m).empty()) return;  // a worker refuses it with that message
   evolver::FarmJob job;
   if (!evolver::JobFromMessage(m, &job).empty()) return;
   FUZZ_CONTRACT(!bus::Encode(evolver::RequestMessage(job)).empty(),

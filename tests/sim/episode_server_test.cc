@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bus/lcm_bus.h"
+#include "sim/core/constants.h"
 #include "sim/node/sim_codec.h"
 
 using namespace ahhs;
@@ -32,13 +33,14 @@ struct Rig {
         [this](const std::string&, const topology_t& t) { topologies.push_back(t); });
   }
   void Send(std::int8_t command, std::int64_t episode, bool realtime = true,
-            const sim::Envelope& envelope = {}) {
+            const sim::Envelope& envelope = {}, const std::string& physics = "") {
     sim_control_t c{};
     c.command = command;
     c.episode = episode;
     sim::ScenarioConfig config =
         sim::MakeScenarioConfig(sim::ScenarioKind::kGait, sim::DockingKind::kDamped, 3, 0.5);
     config.envelope = envelope;
+    config.physics = physics;
     sim::ScenarioToWire(config, &c);
     c.clock_mode = realtime ? sim_control_t::MODE_REALTIME : sim_control_t::MODE_LOCKSTEP;
     bus::PublishTyped(bus, "T/SIM/CONTROL", c);
@@ -151,4 +153,17 @@ TEST_CASE("the episode server refuses an envelope of noise: the real world is it
   CHECK(rig.server.phase() == sim::EpisodeServer::Phase::kIdle);
   REQUIRE(rig.said.size() == 1);
   CHECK(rig.said[0].find("cannot be given an envelope of noise (paper)") != std::string::npos);
+}
+
+TEST_CASE("the episode server refuses an earlier physics, and takes this build's by name") {
+  Rig rig(false);
+  rig.Send(sim_control_t::RESET, 14, true, {}, sim::kGaitChainColdPhysicsVersion);
+  rig.PollFor(5);
+  CHECK(rig.server.phase() == sim::EpisodeServer::Phase::kIdle);
+  REQUIRE(rig.said.size() == 1);
+  CHECK(rig.said[0].find("cannot be asked for the earlier physics 2026-12-04") !=
+        std::string::npos);
+  rig.Send(sim_control_t::RESET, 15);  // names this build's physics
+  rig.PollFor(5);
+  CHECK(rig.server.phase() == sim::EpisodeServer::Phase::kReady);
 }

@@ -25,6 +25,7 @@ namespace ep = ahhs::episode;
 
 void AddLaunchOptions(cli::App& app, LaunchOptions* o) {
   o->scenario.Add(app, "", "episode length, simulated seconds (default: the scenario's)");
+  o->scenario.AddPhysics(app);
   app.add_option("--genome", o->genome_file, "genome file (docs/genome.md)")
       ->required()
       ->check(cli::ExistingFile);

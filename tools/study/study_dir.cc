@@ -19,9 +19,19 @@ constexpr const char* kPlanFile = "study.toml";
 constexpr const char* kSummaryFile = "summary.json";
 
 // The physics version a run of this resolved ahhs-evolve configuration is measured with.
+// The physics a run of this config is measured in: the one it keeps (ahhs-evolve --physics, a
+// plan's `physics`), else this build's.
 std::string PhysicsOf(const json& evolve_config) {
-  return sim::PhysicsVersion(sim::ParseScenarioKind(evolve_config.value("scenario", "gait")),
-                             sim::ParseDocking(evolve_config.value("joints", "damped")));
+  return evolve_config.value("physics",
+                             std::string(sim::PhysicsVersion(
+                                 sim::ParseScenarioKind(evolve_config.value("scenario", "gait")),
+                                 sim::ParseDocking(evolve_config.value("joints", "damped")))));
+}
+// A config without the physics it keeps: whether a run kept it by name or was made when it was
+// the build's own, its settings are the same.
+json WithoutPhysics(json evolve_config) {
+  evolve_config.erase("physics");
+  return evolve_config;
 }
 constexpr const char* kSummaryFormat = "ahhs-study-run";
 // What an export keeps of a complete run.
@@ -304,7 +314,7 @@ std::vector<std::string> StudyDir::Import(const std::string& src,
     if (!summary) continue;
     if (ReadSummary(RunDir(run))) continue;  // complete here already
     const json config = EvolveConfig(run);
-    if (summary->value("evolve_config", json()) != config ||
+    if (WithoutPhysics(summary->value("evolve_config", json())) != WithoutPhysics(config) ||
         summary->value("physics", "") != PhysicsOf(config)) {
       if (skipped) skipped->push_back(run.Name());
       continue;

@@ -50,7 +50,8 @@ const std::set<std::string>& EvolveKeys() {
                                           "envelope.command-delay",
                                           "envelope.start-hinge",
                                           "pendulum.actuator-gain",
-                                          "pendulum.walls"};
+                                          "pendulum.walls",
+                                          "physics"};
   return keys;
 }
 

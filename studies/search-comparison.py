@@ -56,7 +56,9 @@ SETTINGS = {
         "title": "Pendulum, AHHS2-15: 40,000 episodes per run",
     },
     "gait-fixed": {
-        "configuration": ["--scenario", "gait", "--docking", "fixed", "--variant", "ahhs2",
+        # --physics: the robust study's (the GA's runs), so later runs stay comparable with it.
+        "configuration": ["--scenario", "gait", "--docking", "fixed", "--physics", "2026-12-05",
+                          "--variant", "ahhs2",
                           "--hormones", "5", "--rules", "50", "--trials", "5", "--aggregate",
                           "median", "--envelope", "paper", "--validation", "20", "--post-eval",
                           str(POST_EVAL)],

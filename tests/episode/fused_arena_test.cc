@@ -155,11 +155,13 @@ TEST_CASE("exact lockstep: a module stopped longer than any timeout changes noth
     INFO(url);
     sim::SimNodeStats stats;
     std::uint64_t missing = 0;
-    Stall exact{1, 10, 100ms, 0ms, 0ms};
+    // 600 ms: a stop far beyond the timeouts below even when this process itself gets no CPU
+    // for a while (100 ms once went unnoticed under a sanitizer build beside other tests).
+    Stall exact{1, 10, 600ms, 0ms, 0ms};
     CHECK(FusedFitness(url, e, genome, &stats, {}, exact, &missing) == direct);
     CHECK(stats.missed_commands == 0);
     CHECK(missing == 0);
-    Stall timeouts{1, 10, 100ms, 20ms, 5ms};  // the same stop with timeouts far below it
+    Stall timeouts{1, 10, 600ms, 20ms, 5ms};  // the same stop with timeouts far below it
     CHECK(FusedFitness(url, e, genome, &stats, {}, timeouts, &missing) != direct);
     CHECK(stats.missed_commands > 0);
   }

@@ -122,11 +122,8 @@ EvolveConfig ConfigFromJson(const json& doc) {
       c.validation_candidates = doc.at("validation").at("candidates").get<int>();
     }
     if (doc.contains("optimizer")) c.optimizer = doc.at("optimizer").get<std::string>();
-    if (doc.contains("physics")) {
-      c.scenario.physics = doc.at("physics").get<std::string>();
-      if (c.scenario.physics == sim::PhysicsVersion(c.scenario.kind, c.scenario.docking))
-        c.scenario.physics.clear();
-    }
+    if (doc.contains("physics"))
+      sim::KeepPhysics(doc.at("physics").get<std::string>(), &c.scenario);
   } catch (const json::exception& e) {
     throw std::invalid_argument(std::string("run config: ") + e.what());
   }

@@ -122,7 +122,7 @@ std::unique_ptr<RunStore> OpenRun(const cli::App& app, EvolveOptions& o, EvolveC
             " physics of " + store->physics() + ", this build has " + own +
             " and does not simulate that one (CHANGELOG.md names the release that does): its "
             "fitnesses would mix two physics; resume it with that release or start a new run");
-      config->scenario.physics = store->physics() == own ? "" : store->physics();
+      sim::KeepPhysics(store->physics(), &config->scenario);
     }
     if (store->physics().empty() && !o.show_config)
       std::cerr << "ahhs-evolve: note: " << o.resume_dir

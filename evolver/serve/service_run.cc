@@ -28,7 +28,7 @@ std::unique_ptr<RunStore> OpenServiceRun(const std::string& dir, bool resume, bo
         " physics of " + store->physics() + ", this build has " + own +
         " and does not simulate that one: resume it with the release that does, or start a new "
         "run");
-  config->scenario.physics = store->physics() == own ? "" : store->physics();
+  sim::KeepPhysics(store->physics(), &config->scenario);
   store->Export(true);
   return store;
 }

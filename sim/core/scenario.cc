@@ -56,6 +56,10 @@ std::string PhysicsOf(const ScenarioConfig& config) {
   return config.physics.empty() ? PhysicsVersion(config.kind, config.docking) : config.physics;
 }
 
+void KeepPhysics(const std::string& physics, ScenarioConfig* config) {
+  config->physics = physics == PhysicsVersion(config->kind, config->docking) ? "" : physics;
+}
+
 std::string CheckPhysics(ScenarioKind kind, DockingKind docking, const std::string& physics) {
   if (physics.empty()) return "";
   const auto versions = ReplayablePhysics(kind, docking);

@@ -75,6 +75,9 @@ const char* PhysicsVersion(ScenarioKind kind, DockingKind docking);
 std::vector<std::string> ReplayablePhysics(ScenarioKind kind, DockingKind docking);
 // The physics version a config simulates, by name: config.physics, or this build's own.
 std::string PhysicsOf(const ScenarioConfig& config);
+// Sets config->physics to `physics` as a config keeps it: "" for this build's own (by name or
+// ""), else the name (CheckConfig refuses one this build does not simulate).
+void KeepPhysics(const std::string& physics, ScenarioConfig* config);
 // "" when this build simulates `physics` ("" is its own), else a message that lists what it does.
 std::string CheckPhysics(ScenarioKind kind, DockingKind docking, const std::string& physics);
 

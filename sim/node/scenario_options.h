@@ -68,7 +68,7 @@ struct ScenarioOptions {
         MakeScenarioConfig(ParseScenarioKind(scenario), ParseDocking(docking), modules, duration);
     c.pendulum.actuator_gain = pendulum_gain;
     c.pendulum.walls = ParsePendulumWalls(pendulum_walls);
-    c.physics = physics == PhysicsVersion(c.kind, c.docking) ? "" : physics;
+    KeepPhysics(physics, &c);
     return c;
   }
   std::string physics;  // "" or this build's: its own

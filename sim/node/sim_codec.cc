@@ -142,7 +142,7 @@ std::string ScenarioFromFields(const std::string& scenario, std::int32_t num_mod
   // 0 is the default too, so that a RESET made field by field without it asks for the scenario.
   c.pendulum.actuator_gain = pendulum_actuator_gain == 0 ? 1 : pendulum_actuator_gain;
   c.pendulum.walls = pendulum_walls == 1 ? PendulumWalls::kSoft : PendulumWalls::kRigid;
-  c.physics = physics == PhysicsVersion(c.kind, c.docking) ? "" : physics;
+  KeepPhysics(physics, &c);
   const std::string error = CheckConfig(c);
   if (!error.empty()) return error;
   *config = c;

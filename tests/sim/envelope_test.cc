@@ -7,6 +7,7 @@
 #include <memory>
 #include <set>
 
+#include "sim/core/constants.h"
 #include "sim/core/drive.h"
 #include "sim/core/gait.h"
 #include "sim/core/scenario.h"
@@ -338,4 +339,28 @@ TEST_CASE("the envelope survives the wire, and a RESET with a bad one is refused
   reset.envelope_mass = 0;
   reset.envelope_start_heading = 2;
   CHECK_THAT(ConfigFromReset(reset, &back), Catch::Contains("envelope.start-heading"));
+}
+
+TEST_CASE(
+    "the physics travels by name, this build's own as its own, and an unknown one is refused") {
+  ScenarioConfig config = MakeScenarioConfig(ScenarioKind::kGait, DockingKind::kFixed, 4, 3);
+  sim_control_t reset{};
+  reset.command = sim_control_t::RESET;
+  ScenarioToWire(config, &reset);
+  CHECK(reset.physics == kGaitFixedPhysicsVersion);  // never "": another build must see which
+  ScenarioConfig back;
+  REQUIRE(ConfigFromReset(reset, &back) == "");
+  CHECK(back.physics.empty());  // its own
+  reset.physics = "";           // a RESET made field by field asks for the receiver's own
+  REQUIRE(ConfigFromReset(reset, &back) == "");
+  CHECK(PhysicsOf(back) == kGaitFixedPhysicsVersion);
+  KeepPhysics(kGaitChainColdPhysicsVersion, &config);
+  CHECK(config.physics == kGaitChainColdPhysicsVersion);
+  ScenarioToWire(config, &reset);
+  REQUIRE(ConfigFromReset(reset, &back) == "");
+  CHECK(back.physics == kGaitChainColdPhysicsVersion);
+  reset.physics = "1999-01-01";
+  CHECK_THAT(ConfigFromReset(reset, &back),
+             Catch::Contains("this build simulates the gait physics of") &&
+                 Catch::Contains("not 1999-01-01"));
 }

@@ -16,17 +16,16 @@ lua_pids=()
 trap 'kill "${lua_pids[@]}" 2>/dev/null; _ahhs_cleanup' EXIT
 kit() { "$bin/ahhs-conformance" "$@" --lcm-url "$url"; }
 # kit_pass OUT ARGS...: the kit on ARGS into OUT, for an implementation that must pass. Its
-# timing (a reply within 25 ms of its input; a server's clock on time) is what a busy machine can
-# fail for it (CI's machine: one firmware reply of 60 after 93 ms, with the sanitizer build beside
-# at nice 19): a run whose only FAIL is a timing check runs once more, saying so; a slow
-# implementation fails both.
+# timing (a reply within --budget-ms of its input; a server's clock on time) is what a shared
+# machine decides, not the implementation: CI's machine, with only the next build beside at nice
+# 19, once saw a reference firmware reply 101 ms and 88 ms after its clock in two tries (budget
+# 25). So a reference implementation is held to 1 s (20 ticks), which still catches one that
+# does not answer its own tick; the 25-ms verdict itself is checked in conformance_checks_test,
+# and the faulty server below still fails the default budget.
 kit_pass() {
-  local out=$1 timing='^FAIL (within the real-time budget|keeps real time)'
+  local out=$1
   shift
-  kit "$@" >"$out" && return 0
-  [[ $(grep -c '^FAIL' "$out") -eq 1 ]] && grep -Eq "$timing" "$out" || return 1
-  echo "note: $* failed a timing check only ($(grep '^FAIL' "$out")); once more"
-  kit "$@" >"$out"
+  kit "$@" --budget-ms 1000 >"$out"
 }
 
 echo "== the reference firmware and tracker pass"

@@ -155,7 +155,8 @@ def run(args):
                     sys.exit("%s %s seed %d failed (exit %d)" % (args.setting, name, seed, code))
             export(run_dir, setting, name, seed)
     if deferred:
-        print("%d runs not started (--finish-by); the same command goes on" % deferred)
+        print("%d %s not started (--finish-by); the same command goes on"
+              % (deferred, "run" if deferred == 1 else "runs"))
 
 
 def post_eval(bin_dir, genome, out_json):

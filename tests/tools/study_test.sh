@@ -131,7 +131,7 @@ for r in rows: r[6] = repr(7200 / len(rows))  # wall_time_s of each generation
 open(f, 'w').write('\\n'.join([head] + [','.join(r) for r in rows]) + '\\n')"
 "$S" run $tmp/plan.toml --out $tmp/H $opts --from-export $tmp/E5 --finish-by 1h >$tmp/H.out 2>&1 || fail "--finish-by: $(cat $tmp/H.out)"
 grep -q "not starting pend2/seed-2: about 2.0 h, it would end after [0-9:]* (--finish-by)" $tmp/H.out &&
-  grep -q "^1 runs not started, they would end after [0-9:]* (--finish-by); continue with: .*ahhs-study run --resume $tmp/H" $tmp/H.out &&
+  grep -q "^1 run not started, it would end after [0-9:]* (--finish-by); continue with: .*ahhs-study run --resume $tmp/H" $tmp/H.out &&
   ! grep -q "\] started" $tmp/H.out || fail "--finish-by 1h: $(cat $tmp/H.out)"
 "$S" run --resume $tmp/H $opts --finish-by 2.5h >$tmp/H.out 2>&1 && grep -q "started pend2/seed-2" $tmp/H.out &&
   grep -q "^study complete: 4 runs" $tmp/H.out || fail "--finish-by 2.5h: $(cat $tmp/H.out)"

@@ -126,7 +126,7 @@ std::time_t ParseFinishBy(const std::string& text, std::time_t now) {
   return now + static_cast<std::time_t>(amount * scale);
 }
 
-std::map<std::string, double> RunTimeEstimates(const StudyDir& study) {
+std::map<std::string, RunTimeEstimate> RunTimeEstimates(const StudyDir& study) {
   std::map<std::string, std::pair<double, int>> here, elsewhere;  // sum, count
   for (const auto& run : study.Runs()) {
     const RunState s = study.State(run);
@@ -135,9 +135,10 @@ std::map<std::string, double> RunTimeEstimates(const StudyDir& study) {
     sum += s.wall_time;
     ++n;
   }
-  std::map<std::string, double> estimates;
-  for (const auto& [config, sum_n] : elsewhere) estimates[config] = sum_n.first / sum_n.second;
-  for (const auto& [config, sum_n] : here) estimates[config] = sum_n.first / sum_n.second;
+  std::map<std::string, RunTimeEstimate> estimates;
+  for (const auto& [config, sum_n] : elsewhere)
+    estimates[config] = {sum_n.first / sum_n.second, false};
+  for (const auto& [config, sum_n] : here) estimates[config] = {sum_n.first / sum_n.second, true};
   return estimates;
 }
 
@@ -219,7 +220,7 @@ int RunStudy(const StudyDir& study, RunOptions options, const std::atomic<int>& 
   std::fflush(stdout);
 
   const auto estimates =
-      options.finish_by != 0 ? RunTimeEstimates(study) : std::map<std::string, double>{};
+      options.finish_by != 0 ? RunTimeEstimates(study) : std::map<std::string, RunTimeEstimate>{};
   char finish_by[16] = "";
   if (options.finish_by != 0)
     std::strftime(finish_by, sizeof finish_by, "%H:%M", std::localtime(&options.finish_by));
@@ -234,10 +235,11 @@ int RunStudy(const StudyDir& study, RunOptions options, const std::atomic<int>& 
       // --finish-by: a run whose configuration's run time would end it too late waits for the
       // next session (time only moves on, so it never fits later in this one).
       if (const auto e = estimates.find(run.config);
-          e != estimates.end() && static_cast<double>(std::time(nullptr)) + e->second >
+          e != estimates.end() && static_cast<double>(std::time(nullptr)) + e->second.seconds >
                                       static_cast<double>(options.finish_by)) {
         std::printf("[%s] not starting %s: about %s, it would end after %s (--finish-by)\n",
-                    Stamp().c_str(), run.Name().c_str(), Seconds(e->second).c_str(), finish_by);
+                    Stamp().c_str(), run.Name().c_str(), Seconds(e->second.seconds).c_str(),
+                    finish_by);
         std::fflush(stdout);
         ++deferred;
         continue;
@@ -311,9 +313,10 @@ int RunStudy(const StudyDir& study, RunOptions options, const std::atomic<int>& 
   }
   if (deferred > 0) {
     std::printf(
-        "%d runs not started, they would end after %s (--finish-by); continue with: "
+        "%d %s not started, %s would end after %s (--finish-by); continue with: "
         "%s/ahhs-study run --resume %s\n",
-        deferred, finish_by, ahhs::base::ExecutableDir().c_str(), study.dir().c_str());
+        deferred, deferred == 1 ? "run" : "runs", deferred == 1 ? "it" : "they", finish_by,
+        ahhs::base::ExecutableDir().c_str(), study.dir().c_str());
     return 0;
   }
   if (complete < static_cast<int>(runs.size())) {
@@ -371,8 +374,7 @@ int Compact(const StudyDir& study) {
 
 int Status(const StudyDir& study) {
   const auto runs = study.Runs();
-  std::map<std::string, std::pair<int, int>> per_config;                 // complete, total
-  std::map<std::string, std::vector<double>> run_times, exported_times;  // here, elsewhere
+  std::map<std::string, std::pair<int, int>> per_config;  // complete, total
   std::size_t width = 3;
   for (const auto& run : runs) width = std::max(width, run.Name().size());
   std::vector<std::string> lines;
@@ -388,7 +390,6 @@ int Status(const StudyDir& study) {
     if (s.kind == RunStateKind::kComplete) {
       ++done;
       ++complete;
-      (s.exported_only ? exported_times : run_times)[run.config].push_back(s.wall_time);
     } else if (s.kind == RunStateKind::kRunning) {
       ++running;
       if (s.generations_done > 0) {
@@ -422,25 +423,21 @@ int Status(const StudyDir& study) {
   // and each waiting run at its configuration's mean run time here (or, before one is complete,
   // a running run's projected length, or else the mean of its exported runs, made elsewhere);
   // configurations with none of these are counted apart.
-  auto mean_of = [](const std::vector<double>& v) {
-    double m = 0;
-    for (double t : v) m += t;
-    return v.empty() ? 0 : m / static_cast<double>(v.size());
-  };
+  const auto estimates = RunTimeEstimates(study);
   double left = remaining_running;
   int timed = 0, elsewhere = 0, untimed = 0;
   for (const auto& config : study.plan().configs) {
     const auto& [done, total] = per_config[config.name];
-    const auto& times = run_times[config.name];
-    const double mean = mean_of(times);
+    const auto e = estimates.find(config.name);
+    const bool here = e != estimates.end() && e->second.here;
     std::printf("%-24s  %4d/%-4d  %s\n", config.name.c_str(), done, total,
-                times.empty() ? "-" : Seconds(mean).c_str());
+                here ? Seconds(e->second.seconds).c_str() : "-");
     const int n = waiting[config.name];
-    if (!times.empty() || projected.count(config.name)) {
-      left += n * (!times.empty() ? mean : projected[config.name]);
+    if (here || projected.count(config.name)) {
+      left += n * (here ? e->second.seconds : projected[config.name]);
       timed += n;
-    } else if (!exported_times[config.name].empty()) {
-      left += n * mean_of(exported_times[config.name]);
+    } else if (e != estimates.end()) {
+      left += n * e->second.seconds;
       elsewhere += n;
     } else {
       untimed += n;

@@ -33,10 +33,14 @@ struct RunOptions {
 // `now` ("90m", "2.5h", "600s"), as seconds since the epoch. Throws base::UsageError.
 std::time_t ParseFinishBy(const std::string& text, std::time_t now);
 
-// The time one run of each configuration takes here, as `status` counts a waiting run's: the
-// mean wall time of its complete runs made here, else of its exported runs (made elsewhere); no
-// entry when it has neither.
-std::map<std::string, double> RunTimeEstimates(const StudyDir& study);
+// The time one run of a configuration takes: the mean wall time of its complete runs made here
+// (`here`), else of its exported runs (made elsewhere).
+struct RunTimeEstimate {
+  double seconds = 0;
+  bool here = false;
+};
+// Per configuration with a complete run (made here or exported); `status` and --finish-by use it.
+std::map<std::string, RunTimeEstimate> RunTimeEstimates(const StudyDir& study);
 
 // The wall-clock time of day, HH:MM:SS, that begins each line of the scheduler.
 std::string Stamp();

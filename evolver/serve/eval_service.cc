@@ -52,6 +52,7 @@ json EvalService::Hello() const {
                 {"joints", sim::DockingName(settings_.scenario.docking)},
                 {"modules", settings_.scenario.num_modules},
                 {"duration", settings_.scenario.duration},
+                {"physics", sim::PhysicsOf(settings_.scenario)},
                 {"shape",
                  {{"variant", modules::VariantName(s.variant)},
                   {"hormones", s.hormones},

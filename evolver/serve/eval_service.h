@@ -2,9 +2,9 @@
 // with no I/O and no LCM: one request line in, one answer line out, the episodes evaluated by an
 // injected FitnessEvaluator (the farm in ahhs-evaluate, an in-process arena or a function in
 // tests). Version 2, JSON lines:
-//   hello  {"v": 2, "service": "ahhs-evaluate", "scenario": ..., "shape": {...}, "vector_size": N,
-//           "trials": K, "aggregate": ..., "envelope": {...}, "descriptor": [NAME, ...]}
-//           (first line, once)
+//   hello  {"v": 2, "service": "ahhs-evaluate", "scenario": ..., "physics": VERSION,
+//           "shape": {...}, "vector_size": N, "trials": K, "aggregate": ..., "envelope": {...},
+//           "descriptor": [NAME, ...]} (first line, once; a client ignores keys it does not know)
 //   ask    {"v": 2, "id": ANY, "seed": S, "genomes": [G, ...]}
 //          G is a genome document (docs/genome.md) or {"vector": [x, ...]} of the service's shape
 //          (docs/genome.md, "Genome vectors"); "seed" (a uint64, as a number or a decimal string)

@@ -56,6 +56,7 @@ TEST_CASE("an ask is answered with every trial's seed and fitness and their aggr
   CHECK(hello.at("v") == 2);
   CHECK(hello.at("vector_size") == 3 * 2 + 13 * 3);
   CHECK(hello.at("aggregate") == "median");
+  CHECK(hello.at("physics") == sim::kGaitFixedPhysicsVersion);  // the build's own, named
   modules::Rng rng(4);
   const modules::Genome g = modules::RandomGenome({modules::Variant::kAhhs2, 2, 3, 4, 1}, rng);
   const json ask = {

@@ -77,6 +77,12 @@ class Evaluator:
         return self.hello["vector_size"]
 
     @property
+    def physics(self):
+        """The physics version the service evaluates in (its --physics, or its build's own;
+        None from a service older than the hello's "physics" key)."""
+        return self.hello.get("physics")
+
+    @property
     def descriptor_names(self):
         """What a result's "descriptor" holds, value by value (docs/scenarios.md, "Behaviour
         descriptors"): ["above_pivot", "at_wall"] for the pendulum, ["end_x", "end_y"] for the

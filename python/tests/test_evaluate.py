@@ -20,6 +20,7 @@ class EvaluatorTest(unittest.TestCase):
                           "--workers", "2", "--lcm-url", URL]
         with ahhs.Evaluator(options) as ev:
             self.assertEqual(ev.hello["scenario"], "pendulum")
+            self.assertRegex(ev.physics, r"^2[0-9]{3}-[0-9]{2}-[0-9]{2}")  # the build's, named
             self.assertEqual(ev.descriptor_names, ["above_pivot", "at_wall"])
             shape = ev.shape
             self.assertEqual((shape.sensors, shape.actuators), (10, 2))

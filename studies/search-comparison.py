@@ -25,7 +25,10 @@ its search's exported runs (for machines that go away at a known time). A finish
 (its best.json, generations.csv, post-eval.json and, for MAP-Elites, archive.json: tens of kB,
 committed), and a run with an export is not run again, so a fresh machine goes on where the last
 one stopped. `report` reads the exports, tests the held-out medians with two-sided Wilcoxon
-rank-sum tests, and writes results.json, results.md and a figure beside them.
+rank-sum tests, gives each search's share of held-out episodes that succeed (gait: over the wall,
+fitness > 1, and wholly beyond it at the end, counted by this build's post-evaluation where an
+export's did not count it and taken only if it replays bit for bit), and writes results.json,
+results.md and a figure beside them.
 """
 import argparse
 import json
@@ -66,6 +69,8 @@ SETTINGS = {
             "cma-es": ["cmaes.py", "--population", "20", "--sigma", "0.2"],
             "map-elites": ["map_elites.py", "--batch", "20", "--cells", "10", "--sigma", "0.1"],
         },
+        # ahhs-replay's arguments for the same scenario and physics (the crossing count, below).
+        "replay": ["--scenario", "gait", "--docking", "fixed", "--physics", "2026-12-05"],
         "out": os.path.join(HERE, "search-comparison", "gait-fixed"),
         "ga": os.path.join(HERE, "paper-2010-robust", "gait-fixed-ahhs2-50"),
         "budget": 20000,
@@ -171,6 +176,31 @@ def post_eval(bin_dir, genome, out_json):
         return json.load(f)
 
 
+def beyond_wall(bin_dir, setting, genome, evaluation, out_json):
+    """The share of a gait best's held-out episodes that end with every module half beyond the
+    wall: from its post-evaluation when that counted them, else from this build's post-evaluation
+    of it on the same episodes (kept in out_json), taken only when every episode's seed and
+    fitness equal the stored ones bit for bit (as ahhs-study report does); exits otherwise."""
+    if "beyond_wall_share" in evaluation:
+        return float(evaluation["beyond_wall_share"])
+    if not os.path.exists(out_json):
+        os.makedirs(os.path.dirname(out_json), exist_ok=True)
+        argv = [os.path.join(bin_dir, "ahhs-replay"), "--genome", genome] + setting["replay"] + [
+            "--post-eval", str(len(evaluation["per_episode"])), "--post-eval-json",
+            out_json + ".tmp", "--overwrite", "--envelope", "none"]
+        for key, width in sorted(evaluation.get("envelope_half_widths", {}).items()):
+            argv += ["--" + key, repr(float(width))]
+        subprocess.run(argv, check=True, stdout=subprocess.DEVNULL)
+        os.replace(out_json + ".tmp", out_json)
+    with open(out_json) as f:
+        again = json.load(f)
+    stored = [(e["seed"], e["fitness"]) for e in evaluation["per_episode"]]
+    if stored != [(e["seed"], e["fitness"]) for e in again["per_episode"]]:
+        raise SystemExit("%s: its post-evaluation does not replay bit for bit with %s"
+                         % (genome, bin_dir))
+    return float(again["beyond_wall_share"])
+
+
 def report(args):
     import numpy as np
     from scipy.stats import mannwhitneyu
@@ -196,6 +226,10 @@ def report(args):
         else:
             cache = os.path.join(args.out, args.setting, "post-eval", "ga-seed-%d.json" % seed)
             evaluation = post_eval(args.bin, os.path.join(ga, "best.json"), cache)
+        if "replay" in setting:
+            evaluation = dict(evaluation, beyond_wall_share=beyond_wall(
+                args.bin, setting, os.path.join(ga, "best.json"), evaluation,
+                os.path.join(args.out, args.setting, "beyond-wall", "ga-seed-%d.json" % seed)))
         held_out["ga"].append((seed, summary["best_fitness"], evaluation))
         for name in setting["searches"]:
             run_dir = os.path.join(out, "runs", name, "seed-%d" % seed)
@@ -211,6 +245,11 @@ def report(args):
                 cache = os.path.join(args.out, args.setting, "post-eval",
                                      "%s-seed-%d.json" % (name, seed))
                 evaluation = post_eval(args.bin, os.path.join(run_dir, "best.json"), cache)
+            if "replay" in setting:
+                evaluation = dict(evaluation, beyond_wall_share=beyond_wall(
+                    args.bin, setting, os.path.join(run_dir, "best.json"), evaluation,
+                    os.path.join(args.out, args.setting, "beyond-wall",
+                                 "%s-seed-%d.json" % (name, seed))))
             held_out[name].append((seed, training, evaluation))
     results = {"setting": args.setting, "post_eval_episodes": POST_EVAL, "envelope": "paper",
                "budget": setting["budget"], "searches": {}}
@@ -218,7 +257,8 @@ def report(args):
         results["searches"][name] = [
             {"seed": seed, "training_best": training, "post_eval_median": d["median"],
              "post_eval_q25": d["lower_quartile"], "post_eval_q75": d["upper_quartile"],
-             "success_share": d.get("success_share")}
+             "success_share": d.get("success_share"),
+             "beyond_wall_share": d.get("beyond_wall_share")}
             for seed, training, d in runs]
     medians = {n: [r["post_eval_median"] for r in rows]
                for n, rows in results["searches"].items()}
@@ -239,14 +279,23 @@ def report(args):
     ax.set_ylabel("held-out median fitness of the run's best")
     ax.set_title(setting["title"] + ", 10 runs each")
     fig.savefig(os.path.join(out, "post_eval.png"), dpi=110, bbox_inches="tight")
-    md = ["| search | runs | training best: median | held-out median: median | q25 | q75 |",
-          "|---|---|---|---|---|---|"]
+    success = "over the wall (fitness > 1)" if "replay" in setting else "succeeding"
+    md = ["| search | runs | training best: median | held-out median: median | q25 | q75 "
+          "| held-out episodes %s: mean share (runs with any) |%s" %
+          (success, " wholly beyond the wall at the end |" if "replay" in setting else ""),
+          "|---|---|---|---|---|---|---|%s" % ("---|" if "replay" in setting else "")]
+
+    def shares(rows, key):
+        v = [r[key] for r in rows]
+        return "%.0f %% (%d of %d)" % (100 * np.mean(v), sum(x > 0 for x in v), len(v))
     for n in names:
-        t = [r["training_best"] for r in results["searches"][n]]
+        rows = results["searches"][n]
+        t = [r["training_best"] for r in rows]
         m = medians[n]
-        md.append("| %s | %d | %.4f | %.4f | %.4f | %.4f |" %
+        md.append("| %s | %d | %.4f | %.4f | %.4f | %.4f | %s |%s" %
                   (n, len(m), np.median(t), np.median(m), np.percentile(m, 25),
-                   np.percentile(m, 75)))
+                   np.percentile(m, 75), shares(rows, "success_share"),
+                   " %s |" % shares(rows, "beyond_wall_share") if "replay" in setting else ""))
     md += ["", "| A | B | U | p (two-sided rank-sum) |", "|---|---|---|---|"]
     md += ["| %s | %s | %g | %.4g |" % (t["a"], t["b"], t["u"], t["p"]) for t in tests]
     with open(os.path.join(out, "results.md"), "w") as f:

@@ -41,7 +41,9 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(SOURCE, "python"))
+sys.path.insert(0, os.path.join(SOURCE, "tools", "report"))
 from ahhs.search import parse_finish_by  # noqa: E402
+import report_lib  # noqa: E402
 SEEDS = range(1, 11)
 GENERATIONS = 200
 POST_EVAL = 50
@@ -176,29 +178,25 @@ def post_eval(bin_dir, genome, out_json):
         return json.load(f)
 
 
-def beyond_wall(bin_dir, setting, genome, evaluation, out_json):
-    """The share of a gait best's held-out episodes that end with every module half beyond the
-    wall: from its post-evaluation when that counted them, else from this build's post-evaluation
-    of it on the same episodes (kept in out_json), taken only when every episode's seed and
-    fitness equal the stored ones bit for bit (as ahhs-study report does); exits otherwise."""
-    if "beyond_wall_share" in evaluation:
-        return float(evaluation["beyond_wall_share"])
-    if not os.path.exists(out_json):
-        os.makedirs(os.path.dirname(out_json), exist_ok=True)
-        argv = [os.path.join(bin_dir, "ahhs-replay"), "--genome", genome] + setting["replay"] + [
-            "--post-eval", str(len(evaluation["per_episode"])), "--post-eval-json",
-            out_json + ".tmp", "--overwrite", "--envelope", "none"]
-        for key, width in sorted(evaluation.get("envelope_half_widths", {}).items()):
-            argv += ["--" + key, repr(float(width))]
-        subprocess.run(argv, check=True, stdout=subprocess.DEVNULL)
-        os.replace(out_json + ".tmp", out_json)
-    with open(out_json) as f:
-        again = json.load(f)
-    stored = [(e["seed"], e["fitness"]) for e in evaluation["per_episode"]]
-    if stored != [(e["seed"], e["fitness"]) for e in again["per_episode"]]:
+def held_out(args, setting, run_dir, seed, name, stored):
+    """A run's post-evaluation: `stored` when the run post-evaluated its best, else ahhs-replay's
+    (pendulum, kept under OUT). For the gait with the share of held-out episodes that end with
+    every module half beyond the wall: from the post-evaluation when that counted them, else
+    from this build's post-evaluation on the same episodes (kept under OUT), taken only when
+    every episode's seed and fitness equal the stored ones bit for bit (as ahhs-study report
+    does); exits otherwise."""
+    genome = os.path.join(run_dir, "best.json")
+    def kept(kind):
+        return os.path.join(args.out, args.setting, kind, "%s-seed-%d.json" % (name, seed))
+    evaluation = stored if stored is not None else post_eval(args.bin, genome, kept("post-eval"))
+    if "replay" not in setting or "beyond_wall_share" in evaluation:
+        return evaluation
+    again = report_lib.replay_post_eval(args.bin, ["--genome", genome] + setting["replay"],
+                                        evaluation, kept("beyond-wall"), reuse=True)
+    if again is None:
         raise SystemExit("%s: its post-evaluation does not replay bit for bit with %s"
-                         % (genome, bin_dir))
-    return float(again["beyond_wall_share"])
+                         % (genome, args.bin))
+    return dict(evaluation, beyond_wall_share=float(again["beyond_wall_share"]))
 
 
 def report(args):
@@ -212,25 +210,20 @@ def report(args):
     out = setting["out"]
     os.makedirs(out, exist_ok=True)
     searches = ["ga"] + list(setting["searches"])
-    held_out = {n: [] for n in searches}  # per search: (seed, training best, post-evaluation)
+    evaluations = {n: [] for n in searches}  # per search: (seed, training best, post-evaluation)
     for seed in SEEDS:
         ga = os.path.join(setting["ga"], "seed-%d" % seed)
         if not os.path.exists(os.path.join(ga, "summary.json")):
             raise SystemExit("%s: not exported yet by its study" % ga)
         with open(os.path.join(ga, "summary.json")) as f:
             summary = json.load(f)
+        stored = None
         if "--post-eval" in setting["configuration"]:  # the GA run post-evaluated its best
             if "post_eval" not in summary:
                 raise SystemExit("%s: its export has no post-evaluation" % ga)
-            evaluation = summary["post_eval"]
-        else:
-            cache = os.path.join(args.out, args.setting, "post-eval", "ga-seed-%d.json" % seed)
-            evaluation = post_eval(args.bin, os.path.join(ga, "best.json"), cache)
-        if "replay" in setting:
-            evaluation = dict(evaluation, beyond_wall_share=beyond_wall(
-                args.bin, setting, os.path.join(ga, "best.json"), evaluation,
-                os.path.join(args.out, args.setting, "beyond-wall", "ga-seed-%d.json" % seed)))
-        held_out["ga"].append((seed, summary["best_fitness"], evaluation))
+            stored = summary["post_eval"]
+        evaluation = held_out(args, setting, ga, seed, "ga", stored)
+        evaluations["ga"].append((seed, summary["best_fitness"], evaluation))
         for name in setting["searches"]:
             run_dir = os.path.join(out, "runs", name, "seed-%d" % seed)
             if not complete(run_dir, setting):
@@ -238,22 +231,15 @@ def report(args):
             with open(os.path.join(run_dir, "generations.csv")) as f:
                 rows = list(f)[1:]
             training = max(float(r.split(",")[1]) for r in rows)
+            stored = None
             if "--post-eval" in setting["configuration"]:
                 with open(os.path.join(run_dir, "post-eval.json")) as f:
-                    evaluation = json.load(f)
-            else:
-                cache = os.path.join(args.out, args.setting, "post-eval",
-                                     "%s-seed-%d.json" % (name, seed))
-                evaluation = post_eval(args.bin, os.path.join(run_dir, "best.json"), cache)
-            if "replay" in setting:
-                evaluation = dict(evaluation, beyond_wall_share=beyond_wall(
-                    args.bin, setting, os.path.join(run_dir, "best.json"), evaluation,
-                    os.path.join(args.out, args.setting, "beyond-wall",
-                                 "%s-seed-%d.json" % (name, seed))))
-            held_out[name].append((seed, training, evaluation))
+                    stored = json.load(f)
+            evaluation = held_out(args, setting, run_dir, seed, name, stored)
+            evaluations[name].append((seed, training, evaluation))
     results = {"setting": args.setting, "post_eval_episodes": POST_EVAL, "envelope": "paper",
                "budget": setting["budget"], "searches": {}}
-    for name, runs in held_out.items():
+    for name, runs in evaluations.items():
         results["searches"][name] = [
             {"seed": seed, "training_best": training, "post_eval_median": d["median"],
              "post_eval_q25": d["lower_quartile"], "post_eval_q75": d["upper_quartile"],

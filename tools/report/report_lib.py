@@ -519,6 +519,28 @@ def run_replay(bin_dir, argv):
     return proc.stdout
 
 
+def replay_post_eval(bin_dir, replay_argv, post, out_json, reuse=False):
+    """This build's post-evaluation of a genome on the held-out episodes of a stored one (`post`,
+    a summary's post_eval): as many episodes, envelope `none` with the stored half-widths
+    (replay_argv names the genome, scenario, docking and physics). Written to out_json (kept and
+    read again with reuse=True). Returns it when every episode's seed and fitness equal the
+    stored ones bit for bit, else None."""
+    if not (reuse and os.path.exists(out_json)):
+        os.makedirs(os.path.dirname(os.path.abspath(out_json)), exist_ok=True)
+        argv = list(replay_argv) + ["--post-eval", str(len(post["per_episode"])),
+                                    "--post-eval-json", out_json + ".tmp", "--overwrite",
+                                    "--envelope", "none"]
+        for key, width in sorted((post.get("envelope_half_widths") or {}).items()):
+            argv += ["--" + key, repr(float(width))]
+        run_replay(bin_dir, argv)
+        os.replace(out_json + ".tmp", out_json)
+    with open(out_json) as f:
+        again = json.load(f)
+    stored = [(e.get("seed"), e.get("fitness")) for e in post["per_episode"]]
+    replayed = [(e.get("seed"), e.get("fitness")) for e in again.get("per_episode", [])]
+    return again if stored == replayed else None
+
+
 def filmstrip(bin_dir, log, png, written):
     """8 frames of the replayed episode in one PNG (ahhs-view with headless Chromium); what was
     done, for summary.md."""

@@ -33,7 +33,8 @@ import numpy as np
 
 from claims_lib import VERDICTS, fmt, merge_claims
 from report_lib import (ReportError, Run, UsageError, box_figure, find_bin, prepare_out,
-                        rule_edges, rule_parts, run_replay, scenario_label_of)
+                        rule_edges, rule_parts, replay_post_eval, run_replay,
+                        scenario_label_of)
 from run_report import report_neighbourhood, report_runs
 
 SELDOM = 0.01  # a rule part active in fewer ticks than this triggers "seldom"
@@ -205,18 +206,9 @@ def beyond_wall_of(bin_dir, run, scratch):
         return None, "no post-evaluation"
     if "beyond_wall_share" in post:
         return float(post["beyond_wall_share"]), "stored"
-    widths = post.get("envelope_half_widths") or {}
-    out = os.path.join(scratch, "post-eval.json")
-    argv = run.replay_argv() + ["--post-eval", str(len(post["per_episode"])), "--post-eval-json",
-                                out, "--overwrite", "--envelope", "none"]
-    for key, width in sorted(widths.items()):
-        argv += ["--" + key, repr(float(width))]
-    run_replay(bin_dir, argv)
-    with open(out) as f:
-        again = json.load(f)
-    stored = [(e.get("seed"), e.get("fitness")) for e in post["per_episode"]]
-    replayed = [(e.get("seed"), e.get("fitness")) for e in again.get("per_episode", [])]
-    if stored != replayed or "beyond_wall_share" not in again:
+    again = replay_post_eval(bin_dir, run.replay_argv(), post,
+                             os.path.join(scratch, "post-eval.json"))
+    if again is None or "beyond_wall_share" not in again:
         return None, "its post-evaluation does not replay bit for bit with this build"
     return float(again["beyond_wall_share"]), "replayed"
 

@@ -28,7 +28,6 @@ evaluation["per_episode"] = evaluation["per_episode"][:2]
 assert "beyond_wall_share" not in evaluation, evaluation.keys()
 
 
-
 def held_out(out, stored):
     args = argparse.Namespace(out=out, setting="gait-fixed", bin=bin_dir)
     return sc.held_out(args, setting, run, 2, "ga", stored)

@@ -10,8 +10,12 @@ source "${AHHS_SOURCE_DIR:?}/tests/lib.sh"
 ahhs_netns "$0" "$@"
 ahhs_scratch 'ahhs-evolve|ahhs-worker|ahhs-sim|ahhs-module|ahhs-fitness'
 E="$bin/ahhs-evolve"
+# 24 generations take about 5 s undisturbed here, 4 times the 1.2 s of progress between
+# the stalls: a machine twice as fast still has the run going at the fourth (12 took 3.6 s and
+# ended before it).
+gens=24
 url="udpm://239.255.42.65:7766?ttl=0&recv_buf_size=4194304"
-cfg=(--scenario gait --hormones 3 --rules 6 --population 8 --generations 12 --duration 3 --seed 34
+cfg=(--scenario gait --hormones 3 --rules 6 --population 8 --generations $gens --duration 3 --seed 34
      --lcm-url "$url" --arena-kind processes --workers 2)
 
 "$E" "${cfg[@]}" --out $tmp/whole >$tmp/whole.out 2>&1 || { cat $tmp/whole.out; fail "the undisturbed run"; }
@@ -20,9 +24,9 @@ evolver=$!
 stalls=0
 for plan in "ahhs-module 2.5" "ahhs-sim 2.5" "ahhs-fitness 2.5" "ahhs-module 11"; do
   read -r victim seconds <<<"$plan"
-  sleep 0.8
+  sleep 0.3
   # The victim, once the workers have started their arenas (under load that can take longer
-  # than the first 0.8 s: seen once in CI); none while the evolver runs no more: the run is over.
+  # than the first 0.3 s: seen once in CI); none while the evolver runs no more: the run is over.
   pids=()
   for _ in $(seq 1 200); do
     mapfile -t pids < <(pgrep -g "$pg" -f "$bin/$victim( |$)")
@@ -38,7 +42,7 @@ wait $evolver || { tail -5 $tmp/stalled.out; fail "the stalled run"; }
 [[ $stalls == 4 ]] || fail "the run ended before the 4 stalls ($stalls): make it longer"
 dump_run $tmp/whole >$tmp/whole.dump
 dump_run $tmp/stalled >$tmp/stalled.dump
-[[ $(wc -l <$tmp/whole.dump) == $((8 * 12)) ]] || fail "the undisturbed run is incomplete"
+[[ $(wc -l <$tmp/whole.dump) == $((8 * gens)) ]] || fail "the undisturbed run is incomplete"
 if ! cmp -s $tmp/whole.dump $tmp/stalled.dump; then
   diff $tmp/whole.dump $tmp/stalled.dump | head -8
   fail "the stalled run differs from the undisturbed one"

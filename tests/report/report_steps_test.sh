@@ -68,6 +68,21 @@ done
 grep -Eq '^\| pendulum-ahhs1-60 \| 1 \| 0\.666 \| [6-9][0-9] % \([0-9]+-[0-9]+ %\) \| 1 \| [67][0-9] % \| [1-9][0-9] \|$' $tmp/behaviour.md &&
   grep -q '^| pendulum-ahhs2-15 | 1 | ' $tmp/behaviour.md || fail "pendulum behaviour table: $(cat $tmp/behaviour.md)"
 
+echo "== judge: a robust best under other steps, command delays and bent starts (2 held-out episodes)"
+# The robust study's fixed AHHS2-20 seed-4 export: its stored episodes replay bit for bit at the
+# scenario's step (or judge fails), and the genome's results go to the cache; a second report
+# replays nothing.
+robust=$AHHS_SOURCE_DIR/studies/paper-2010-robust/gait-fixed-ahhs2-20/seed-4
+"$bin/ahhs-report" judge $robust --episodes 2 --jobs 2 --cache $tmp/jc -o $tmp/judge >$tmp/judge.out 2>&1 ||
+  { cat $tmp/judge.out; fail "judge"; }
+grep -q "^judging paper-2010-robust/gait-fixed-ahhs2-20/seed-4 (1 of 1)$" $tmp/judge.out || fail "judge: $(cat $tmp/judge.out)"
+[[ -s $tmp/jc/6f5ce62da9d23dd2-2026-12-05-2.json ]] || fail "judge cache: $(ls $tmp/jc)"
+grep -Eq '^\| paper-2010-robust/gait-fixed-ahhs2-20/seed-4 \| ([0-9.]+ \([0-9.]+ / [0-9.]+\), 0% \| ){4}(yes|\*\*no\*\*) \|' $tmp/judge/judged.md ||
+  fail "judge table: $(cat $tmp/judge/judged.md)"
+[[ $(wc -l <$tmp/judge/judged.csv) == 9 ]] || fail "judged.csv: $(cat $tmp/judge/judged.csv)"
+"$bin/ahhs-report" judge $robust --episodes 2 --cache $tmp/jc -o $tmp/judge --overwrite >$tmp/judge.out 2>&1 &&
+  ! grep -q "^judging" $tmp/judge.out || fail "judge from its cache: $(cat $tmp/judge.out)"
+
 echo "== bad input"
 "$bin/ahhs-report" neighbourhood $tmp/nothing.json -o $tmp/x >$tmp/err 2>&1 && fail "missing genome accepted"
 grep -q "no such genome file" $tmp/err || fail "missing genome message: $(cat $tmp/err)"

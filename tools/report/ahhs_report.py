@@ -6,11 +6,13 @@
   ahhs-report study STUDY_DIR_OR_EXPORT -o OUT_DIR (study_report.py)
   ahhs-report steps GENOME_OR_RUN... -o OUT_DIR (step_report.py)
   ahhs-report compare STUDY_REPORT_DIR... -o OUT_DIR (compare_report.py)
+  ahhs-report judge STUDY_EXPORT... --cache DIR -o OUT_DIR (judge_report.py)
 
 This file only parses the command line and dispatches. The modules form a stack without cycles:
 report_lib (runs, statistics, figures, replays) < run_report (runs, neighbourhood), claims_lib
-(how a claim is judged) < study_report, step_report, compare_report < ahhs_report. A study's claims live beside
-its plan (studies/paper-2010-claims.py).
+(how a claim is judged) < study_report, step_report, compare_report < judge_report (which uses
+step_report's rule) < ahhs_report. A study's claims live beside its plan
+(studies/paper-2010-claims.py).
 
 Reads each run's SQLite database directly (Python's sqlite3), replays the best genome of the
 first run with ahhs-replay for the per-tick figures, and writes every figure as PNG and SVG.
@@ -22,6 +24,7 @@ import os
 import sys
 
 import compare_report
+import judge_report
 import report_lib
 import step_report
 import study_report
@@ -42,6 +45,8 @@ def main(argv):
         return step_report.main(argv[1:])
     if argv and argv[0] == "compare":
         return compare_report.main(argv[1:])
+    if argv and argv[0] == "judge":
+        return judge_report.main(argv[1:])
     if argv and argv[0] == "neighbourhood":
         p = argparse.ArgumentParser(prog="ahhs-report neighbourhood",
                                     description="fitness of single mutants of a genome")
@@ -69,7 +74,9 @@ def main(argv):
                "ahhs-report study STUDY_DIR -o DIR: a study against the paper's claims; "
                "ahhs-report steps GENOME... -o DIR: the gait's physics step judged by "
                "post-evaluated distributions; ahhs-report compare REPORT_DIR... -o DIR: the "
-               "paper's claims side by side across study reports")
+               "paper's claims side by side across study reports; ahhs-report judge EXPORT... "
+               "--cache DIR -o DIR: how a study's bests hold under other steps, command delays "
+               "and bent starts")
     p.add_argument("runs", nargs="+",
                    help="run directories, or runs of a study export (ahhs-study export)")
     p.add_argument("-o", "--out", required=True, help="output directory")

@@ -88,8 +88,8 @@ with tempfile.TemporaryDirectory() as tmp:
         in md, md
     assert ("- 12.5 ms agrees with 6.25 ms for **1 of 2**, 6.25 ms with 3.125 ms for **1 of 2**, "
             "25 ms with 12.5 ms for 2 of 2.") in md, md
-    assert ("- Of the 1 whose 12.5 ms differs from 6.25 ms, 1 have their highest median at "
-            "12.5 ms, the step they were evolved at.") in md, md
+    assert ("- Of the 1 whose 12.5 ms differs from 6.25 ms, 1 score higher at 12.5 ms, the step "
+            "they were evolved at.") in md, md
     # Delay: seed-1 at a quarter of a tick moved 8.3 % (kept), at half 11.7 % (bold).
     assert "| E/gait-fixed-ahhs2-20/seed-1 | 0.600 (0.590 / 0.610), 0% | 0.550 (0.540 / 0.560), " \
         "0% | **0.530** (0.520 / 0.540), 0% |" in md, md
@@ -106,17 +106,21 @@ with tempfile.TemporaryDirectory() as tmp:
     assert rows[1].startswith(
         "E/gait-fixed-ahhs2-20/seed-1,aaaaaaaaaaaaaaaa,2026-12-05,fixed,h/4,"), rows[1]
 
-    # best_at_own_step: ties count, a failed step never does.
-    assert jr.best_at_own_step(two) and jr.best_at_own_step(one)
-    finer = copy.deepcopy(two)
-    finer["conditions"]["h/2"]["median"] = 0.71
-    assert not jr.best_at_own_step(finer)
+    # Runs in the order of their seeds' values.
+    assert sorted(["E/x/seed-10", "E/x/seed-2", "E/x/seed-1-median", "E/x/seed-1"],
+                  key=jr.natural_key) == ["E/x/seed-1", "E/x/seed-1-median", "E/x/seed-2",
+                                          "E/x/seed-10"]
+    # higher_at_own_step: the median at h above the one at h/2; a tie or a failed step is not.
+    assert jr.higher_at_own_step(two) and jr.higher_at_own_step(one)
+    lower = copy.deepcopy(two)
+    lower["conditions"]["h/2"]["median"] = 0.71
+    assert not jr.higher_at_own_step(lower)
     tie = copy.deepcopy(two)
-    tie["conditions"]["h/4"]["median"] = 0.70
-    assert jr.best_at_own_step(tie)
+    tie["conditions"]["h/2"]["median"] = 0.70
+    assert not jr.higher_at_own_step(tie)
     failed = copy.deepcopy(two)
-    failed["conditions"]["h/4"]["median"] = None
-    assert not jr.best_at_own_step(failed)
+    failed["conditions"]["h/2"]["median"] = None
+    assert not jr.higher_at_own_step(failed)
 
     # Errors: one line, exit 1, no report written.
     def fails(args, message):

@@ -60,7 +60,8 @@ with tempfile.TemporaryDirectory() as tmp:
         f.write('name = "judge-fixture"\n')
     cache = os.path.join(tmp, "cache")
     os.makedirs(cache)
-    # h/4, h/2, h, 2h, delay 0.25, delay 0.5, bent 0.1, bent 0.3
+    # h/4, h/2, h, 2h, delay 0.25, delay 0.5, bent 0.1, bent 0.3 (one episode each, so each
+    # bootstrap interval of a difference of medians is the difference itself)
     # seed-1: h is 9.9 % above h/2 (agrees), h/2 10.3 % above h/4 (differs), 2h agrees; the
     # delays move it by 8.3 % and 11.7 % (bold), the bent starts not at all.
     one = judged("E/gait-fixed-ahhs2-20/seed-1", hashes["seed-1"],
@@ -81,10 +82,12 @@ with tempfile.TemporaryDirectory() as tmp:
     md = open(os.path.join(out, "judged.md")).read()
     assert "## Fixed docking (2 genomes; the scenario's step h = 12.5 ms)" in md, md
     assert ("| E/gait-fixed-ahhs2-20/seed-1 | 0.495 (0.485 / 0.505), 0% | 0.546 (0.536 / 0.556), "
-            "0% | 0.600 (0.590 / 0.610), 0% | 0.590 (0.580 / 0.600), 0% | yes | **no** | yes |") \
+            "0% | 0.600 (0.590 / 0.610), 0% | 0.590 (0.580 / 0.600), 0% | yes (+0.054 to +0.054) | "
+            "**no** (+0.051 to +0.051) | yes (-0.010 to -0.010) |") \
         in md, md
     assert "| E/gait-fixed-ahhs2-20/seed-2 | 0.690 (0.680 / 0.700), 0% | 0.690 (0.680 / 0.700), " \
-        "4% | 0.700 (0.690 / 0.710), 20% | 0.690 (0.680 / 0.700), 20% | **no** | yes | yes |" \
+        "4% | 0.700 (0.690 / 0.710), 20% | 0.690 (0.680 / 0.700), 20% | **no** (+0.010 to " \
+        "+0.010) | yes (+0.000 to +0.000) | yes (-0.010 to -0.010) |" \
         in md, md
     assert ("- 12.5 ms agrees with 6.25 ms for **1 of 2**, 6.25 ms with 3.125 ms for **1 of 2**, "
             "25 ms with 12.5 ms for 2 of 2.") in md, md

@@ -77,7 +77,7 @@ robust=$AHHS_SOURCE_DIR/studies/paper-2010-robust/gait-fixed-ahhs2-20/seed-4
   { cat $tmp/judge.out; fail "judge"; }
 grep -q "^judging paper-2010-robust/gait-fixed-ahhs2-20/seed-4 (1 of 1)$" $tmp/judge.out || fail "judge: $(cat $tmp/judge.out)"
 [[ -s $tmp/jc/6f5ce62da9d23dd2-2026-12-05-2.json ]] || fail "judge cache: $(ls $tmp/jc)"
-grep -Eq '^\| paper-2010-robust/gait-fixed-ahhs2-20/seed-4 \| ([0-9.]+ \([0-9.]+ / [0-9.]+\), 0% \| ){4}(yes|\*\*no\*\*) \|' $tmp/judge/judged.md ||
+grep -Eq '^\| paper-2010-robust/gait-fixed-ahhs2-20/seed-4 \| ([0-9.]+ \([0-9.]+ / [0-9.]+\), 0% \| ){4}(yes|\*\*no\*\*) \([+-][0-9.]+ to [+-][0-9.]+\) \|' $tmp/judge/judged.md ||
   fail "judge table: $(cat $tmp/judge/judged.md)"
 [[ $(wc -l <$tmp/judge/judged.csv) == 9 ]] || fail "judged.csv: $(cat $tmp/judge/judged.csv)"
 "$bin/ahhs-report" judge $robust --episodes 2 --cache $tmp/jc -o $tmp/judge --overwrite >$tmp/judge.out 2>&1 &&

@@ -26,7 +26,7 @@ import re
 import tempfile
 
 import report_lib as report
-from step_report import DOCKING_STEP, MEDIAN_TOLERANCE, agrees
+from step_report import DOCKING_STEP, MEDIAN_TOLERANCE, agrees, bootstrap_interval
 
 CACHE_FORMAT = "ahhs-judged"
 CACHE_VERSION = 1
@@ -222,10 +222,15 @@ def docking_section(docking, rows):
           f"| run | {ms['h/4']} | {ms['h/2']} | {ms['h']} | {ms['2h']} | {ms['h']} agrees with "
           f"{ms['h/2']} | {ms['h/2']} with {ms['h/4']} | {ms['2h']} with {ms['h']} |",
           "|---|---|---|---|---|---|---|---|"]
-    yes = lambda ok: "yes" if ok else "**no**"
+    def verdict(r, step, half, ok):
+        ci = bootstrap_interval({"fitnesses": c(r, step)["fitness"]},
+                                {"fitnesses": c(r, half)["fitness"]})
+        return ("yes" if ok else "**no**") + (f" ({ci[0]:+.3f} to {ci[1]:+.3f})" if ci else "")
+
     for r, a, b, d in zip(rows, step_ok, half_ok, double_ok):
         md.append(f"| {r['run']} | " + " | ".join(cell(c(r, k)) for k in ("h/4", "h/2", "h", "2h"))
-                  + f" | {yes(a)} | {yes(b)} | {yes(d)} |")
+                  + f" | {verdict(r, 'h', 'h/2', a)} | {verdict(r, 'h/2', 'h/4', b)} | "
+                  f"{verdict(r, '2h', 'h', d)} |")
     md += ["", f"- {ms['h']} agrees with {ms['h/2']} for **{sum(step_ok)} of {n}**, "
                f"{ms['h/2']} with {ms['h/4']} for **{sum(half_ok)} of {n}**, "
                f"{ms['2h']} with {ms['h']} for {sum(double_ok)} of {n}.",
@@ -256,8 +261,10 @@ def report_judged(args):
           "run's held-out episodes (the same seeds and envelope), with the physics step, a "
           "command delay or a bent start changed (ahhs-report judge; docs/analysis.md). A step "
           "agrees with half of it when its median is within 10 % and its over-the-wall share "
-          "within 0.15; a median in bold moved by more than 10 % from the one as evolved. Cells: "
-          "median (quartiles), share of the episodes over the wall.", ""]
+          "within 0.15; in brackets after a step's verdict, the 90 % paired bootstrap interval "
+          "of the difference of medians (how much sampling alone could move it); a median in bold "
+          "moved by more than 10 % from the one as evolved. Cells: median (quartiles), share of "
+          "the episodes over the wall.", ""]
     for docking in ("fixed", "damped"):
         these = [r for r in rows if r["docking"] == docking]
         if these:

@@ -182,7 +182,10 @@ grep -q "cannot be given with --resume" $tmp/out || fail "robust resume option m
 wa=$!
 "$bin/ahhs-worker" --lcm-url "$url" --any-run --id lan-b >/dev/null 2>&1 &
 wb=$!
-$E $robust --out $tmp/r-external --workers 0 >$tmp/out 2>&1 || { cat $tmp/out; fail "robust run, external workers"; }
+# Both workers serve before generation 0 (a worker still starting on a loaded machine would
+# leave every trial to the other).
+$E $robust --out $tmp/r-external --workers 0 --wait-for-workers 2 --worker-wait 20 >$tmp/out 2>&1 ||
+  { cat $tmp/out; fail "robust run, external workers"; }
 kill $wa $wb; wait $wa $wb 2>/dev/null
 same_run $tmp/r-whole $tmp/r-external "robust run on external workers only"
 [[ "$(validation $tmp/r-external)" == "$(validation $tmp/r-whole)" ]] || fail "the validation on external workers differs"

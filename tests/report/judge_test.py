@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """ahhs-report judge on made-up judgments whose verdicts are known: a step agrees with half of it
 by the rule of ahhs-report steps, a median more than 10 % from the one as evolved is bold, the
-counts say so, the highest median at the evolved step is counted; with every genome in the cache
+counts say so, a genome that differs and scores higher at the evolved step than at half of it is
+counted; with every genome in the cache
 nothing is replayed (no ahhs-replay needed); a damaged cache entry, a run without a
 post-evaluation and a missing directory are one line and exit 1, nothing half-written."""
 import copy
@@ -67,7 +68,7 @@ with tempfile.TemporaryDirectory() as tmp:
     one = judged("E/gait-fixed-ahhs2-20/seed-1", hashes["seed-1"],
                  [0.495, 0.546, 0.6, 0.59, 0.55, 0.53, 0.6, 0.6])
     # seed-2: the medians agree everywhere, but h gets over the wall in 0.16 more of its
-    # episodes than h/2: differs, and its median at h (0.70) is the highest of the four steps.
+    # episodes than h/2: differs, and its median at h (0.70) is above the one at h/2 (0.69).
     two = judged("E/gait-fixed-ahhs2-20/seed-2", hashes["seed-2"],
                  [0.69, 0.69, 0.70, 0.69, 0.70, 0.70, 0.70, 0.50],
                  {"h": 0.2, "h/2": 0.04, "2h": 0.2})

@@ -53,6 +53,32 @@ grep -q 'penwidth=' $tmp/report/controller.dot || fail "controller edges without
 "$bin/ahhs-report" $tmp/gait -o $tmp/report-gait >/dev/null 2>&1 || fail "gait report"
 [[ -s $tmp/report-gait/hinges.png && ! -e $tmp/report-gait/trace.png ]] || fail "gait figures: $(ls $tmp/report-gait)"
 grep -q "centroid_x,centroid_y" $tmp/report-gait/replay-body.csv || fail "the gait's body trace"
+grep -q "^### How it moves" $tmp/report-gait/summary.md || fail "no motion table: $(cat $tmp/report-gait/summary.md)"
+# A run with a held-out post-evaluation: the report replays the episode nearest its median, the
+# stored fitness bit for bit, and says how the hinges move (a run directory's post-eval.json, and
+# an exported best of the robust study).
+cp -r $tmp/gait $tmp/gait-post
+"$bin/ahhs-replay" $tmp/gait-post --post-eval 3 --post-eval-json $tmp/gait-post/post-eval.json >/dev/null 2>&1 ||
+  fail "post-evaluation of the gait run"
+robust=$AHHS_SOURCE_DIR/studies/paper-2010-robust/gait-fixed-ahhs2-20/seed-4
+for r in $tmp/gait-post $robust; do
+  post=$r/post-eval.json; [[ -e $post ]] || post=$r/summary.json
+  seed=$(/usr/bin/python3 -c "import json,sys; p=json.load(open(sys.argv[1])); p=p.get('post_eval', p)
+e=sorted((e for e in p['per_episode'] if e['fitness'] is not None), key=lambda e: e['fitness'])
+print(e[len(e) // 2]['seed'])" $post)
+  "$bin/ahhs-report" $r -o $tmp/report-post >$tmp/out 2>&1 || fail "report of $r: $(cat $tmp/out)"
+  grep -q "held-out episode $seed, the one nearest the median .*, the stored one bit for bit" \
+    $tmp/report-post/summary.md || fail "$r: not the median episode $seed: $(cat $tmp/report-post/summary.md)"
+  [[ $(grep -cE '^\| [0-4] \| -?[0-9]+\.[0-9] \|' $tmp/report-post/summary.md) == 5 ]] ||
+    fail "$r: a hinge row per module: $(cat $tmp/report-post/summary.md)"
+  rm -rf $tmp/report-post
+done
+# A replay that does not give the stored fitness is an error, not a report of another episode.
+/usr/bin/python3 -c "import json,sys; p=json.load(open(sys.argv[1]))
+for e in p['per_episode']: e['fitness'] = 0.123
+json.dump(p, open(sys.argv[1], 'w'))" $tmp/gait-post/post-eval.json
+"$bin/ahhs-report" $tmp/gait-post -o $tmp/report-post >$tmp/out 2>&1 && fail "a wrong stored fitness was reported"
+grep -q "the run stored 0.123: another build or physics?" $tmp/out || fail "mismatch message: $(cat $tmp/out)"
 grep -q "reproduced exactly" $tmp/report/summary.md || fail "summary lacks the replay check"
 grep -q "| pendulum AHHS2-8 | pendulum AHHS1-12 | 3 | 3 |" $tmp/report/summary.md || fail "summary lacks the Wilcoxon table: $(cat $tmp/report/summary.md)"
 [[ "$(head -c 4 $tmp/report/fitness.png | tail -c 3)" == PNG ]] || fail "fitness.png is not a PNG"

@@ -519,6 +519,98 @@ def run_replay(bin_dir, argv):
     return proc.stdout
 
 
+def envelope_argv(post):
+    """ahhs-replay's options for the envelope of a stored post-evaluation (a summary's post_eval,
+    or a run's post-eval.json): `none` with its stored half-widths, so that a preset that changes
+    later cannot change the episodes."""
+    argv = ["--envelope", "none"]
+    for key, width in sorted((post.get("envelope_half_widths") or {}).items()):
+        argv += ["--" + key, repr(float(width))]
+    return argv
+
+
+def stored_post_eval(run):
+    """A run's stored held-out post-evaluation of its best (an export's summary.json post_eval,
+    a run directory's post-eval.json), or None when it has none."""
+    try:
+        if run.exported:
+            with open(os.path.join(run.path, "summary.json")) as f:
+                post = json.load(f).get("post_eval")
+        elif os.path.isfile(os.path.join(run.path, "post-eval.json")):
+            with open(os.path.join(run.path, "post-eval.json")) as f:
+                post = json.load(f)
+        else:
+            return None
+    except (OSError, ValueError) as e:
+        raise ReportError(f"{run.path}: an unreadable post-evaluation ({e})")
+    return post if post and post.get("per_episode") else None
+
+
+def median_episode(post):
+    """The held-out episode a report replays as the one nearest the median: of the episodes with
+    a fitness, sorted by it, the one at n // 2 (of an even n the upper of the two middle ones,
+    which are equally near)."""
+    valid = [e for e in post["per_episode"] if isinstance(e.get("fitness"), (int, float))]
+    if not valid:
+        raise ReportError("the post-evaluation has no episode with a fitness")
+    return sorted(valid, key=lambda e: e["fitness"])[len(valid) // 2]
+
+
+def gait_motion(trace_csv, body_csv, settle=5.0):
+    """How a gait replay moves, in numbers to read beside its filmstrip (docs/analysis.md). Per
+    module, after the first `settle` s (a quarter of an episode shorter than 20 s): the hinge
+    angle's mean, standard deviation, min and max (degrees) and its dominant frequency (the
+    largest peak of the spectrum of the per-tick trace, which aliases no swing up to half the
+    tick rate; None for a hinge whose standard deviation is under 0.5 degree). Per pair of neighbours: the correlation at zero lag, and
+    the lag within half the first one's period at which they correlate best (positive: the
+    second follows). The centroid's distance from its start at each quarter of the episode and
+    its displacement at the end (m)."""
+    data = np.atleast_1d(np.genfromtxt(trace_csv, delimiter=",", names=True))
+    body = np.atleast_1d(np.genfromtxt(body_csv, delimiter=",", names=True))
+    settle = min(settle, 0.25 * float(body["time"][-1]))
+    modules = sorted(set(int(m) for m in data["module"]))
+    dt = float(np.median(np.diff(body["time"]))) if len(body) > 1 else 0.0
+    angles, rows = [], []
+    for m in modules:
+        sel = (data["module"] == m) & (data["time"] >= settle)
+        a = np.degrees(data["hinge_angle"][sel])
+        if len(a) < 4:
+            raise ReportError(f"{trace_csv}: under 4 ticks after the first {settle:g} s")
+        angles.append(a)
+        sd = float(np.std(a))
+        freq = None
+        if sd >= 0.5 and dt > 0:
+            power = np.abs(np.fft.rfft(a - np.mean(a)))**2
+            freq = float(np.fft.rfftfreq(len(a), d=dt)[1 + int(np.argmax(power[1:]))])
+        rows.append({"module": m, "mean": float(np.mean(a)), "sd": sd, "min": float(np.min(a)),
+                     "max": float(np.max(a)), "frequency": freq})
+    pairs = []
+    for i in range(len(modules) - 1):
+        a, b = angles[i], angles[i + 1]
+        pair = {"modules": (modules[i], modules[i + 1]), "correlation": None, "lag": None,
+                "lag_correlation": None}
+        if rows[i]["sd"] >= 0.5 and rows[i + 1]["sd"] >= 0.5:
+            pair["correlation"] = float(np.corrcoef(a, b)[0, 1])
+            if rows[i]["frequency"]:
+                best = None
+                reach = min(len(a) // 4, int(0.5 / rows[i]["frequency"] / dt))
+                for k in range(-reach, reach + 1):  # b[t + k] against a[t]
+                    x, y = (a[:len(a) - k], b[k:]) if k >= 0 else (a[-k:], b[:len(b) + k])
+                    c = float(np.corrcoef(x, y)[0, 1])
+                    if best is None or c > best[0]:
+                        best = (c, k * dt)
+                pair["lag_correlation"], pair["lag"] = best
+        pairs.append(pair)
+    t = body["time"]
+    dx, dy = body["centroid_x"] - body["centroid_x"][0], body["centroid_y"] - body["centroid_y"][0]
+    d = np.hypot(dx, dy)
+    at = [max(0, int(round(q * len(t))) - 1) for q in (0.25, 0.5, 0.75, 1.0)]
+    quarters = [(float(t[i]), float(d[i])) for i in at]
+    end = (float(dx[-1]), float(dy[-1]))
+    return {"settle": settle, "hinges": rows, "neighbours": pairs, "distance": quarters,
+            "end": end}
+
+
 def replay_post_eval(bin_dir, replay_argv, post, out_json, reuse=False):
     """This build's post-evaluation of a genome on the held-out episodes of a stored one (`post`,
     a summary's post_eval): as many episodes, envelope `none` with the stored half-widths
@@ -528,10 +620,8 @@ def replay_post_eval(bin_dir, replay_argv, post, out_json, reuse=False):
     if not (reuse and os.path.exists(out_json)):
         os.makedirs(os.path.dirname(os.path.abspath(out_json)), exist_ok=True)
         argv = list(replay_argv) + ["--post-eval", str(len(post["per_episode"])),
-                                    "--post-eval-json", out_json + ".tmp", "--overwrite",
-                                    "--envelope", "none"]
-        for key, width in sorted((post.get("envelope_half_widths") or {}).items()):
-            argv += ["--" + key, repr(float(width))]
+                                    "--post-eval-json", out_json + ".tmp",
+                                    "--overwrite"] + envelope_argv(post)
         run_replay(bin_dir, argv)
         os.replace(out_json + ".tmp", out_json)
     with open(out_json) as f:

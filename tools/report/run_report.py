@@ -12,9 +12,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
-from report_lib import (ReportError, Run, box_figure, controller_graph, filmstrip,  # noqa: E402
-                        find_bin, fitness_figure, prepare_out, replay_figures, rule_parts,
-                        run_replay, save)
+from report_lib import (ReportError, Run, box_figure, controller_graph, envelope_argv,  # noqa: E402
+                        filmstrip, find_bin, fitness_figure, gait_motion, median_episode,
+                        prepare_out, replay_figures, rule_parts, run_replay, save,
+                        stored_post_eval)
 
 
 def report_runs(args):
@@ -77,9 +78,11 @@ def report_runs(args):
         rules = os.path.join(args.out, "replay-rules.csv")
         log = os.path.join(args.out, "replay.lcm")
         body = os.path.join(args.out, "replay-body.csv")
-        out = run_replay(bin_dir, first.replay_argv() + ["--csv", trace, "--rules-csv", rules,
-                                                         "--log", log,
-                                   "--body-csv", body])
+        post = stored_post_eval(first)
+        episode = median_episode(post) if post else None
+        chosen = (["--seed", str(episode["seed"])] + envelope_argv(post)) if episode else []
+        out = run_replay(bin_dir, first.replay_argv() + chosen + [
+            "--csv", trace, "--rules-csv", rules, "--log", log, "--body-csv", body])
         written += [trace, rules, log, body]
         info = replay_figures(trace, rules, body, first.scenario_label, args.out, written)
         with open(os.path.join(first.path, "best.json")) as f:
@@ -87,6 +90,8 @@ def report_runs(args):
         edges = controller_graph(genome, info["parts"], args.out, written,
                                  scenario=first.scenario_label)
         check = [l for l in out.splitlines() if l.startswith("stored fitness")]
+        if episode:
+            check = [held_out_check(out, episode, post)]
         strip = filmstrip(bin_dir, log, os.path.join(args.out, "best-filmstrip.png"), written)
         md += ["", f"## The best controller of `{first.path}`", "",
                "Replayed with `ahhs-replay` (log: `replay.lcm`): " + (check[0] if check else out.strip()),
@@ -97,12 +102,54 @@ def report_runs(args):
                f"- controller graph: {edges} edges (one per rule part that triggered in the replay, "
                "its width by the share of ticks)",
                f"- {strip}"]
+        if first.scenario_label != "pendulum":
+            md += motion_lines(gait_motion(trace, body))
     md += ["", "## Figures", ""] + [f"- `{os.path.basename(p)}`" for p in written
                                     if p.endswith(".png")]
     summary = os.path.join(args.out, "summary.md")
     with open(summary, "w") as f:
         f.write("\n".join(md) + "\n")
     print(f"report written to {args.out}: summary.md and {len(written)} files")
+
+
+def held_out_check(out, episode, post):
+    """The summary's line for a replay of the held-out episode nearest the median; an error when
+    the replay does not give the episode's stored fitness bit for bit."""
+    last = [l for l in out.splitlines() if l.startswith("fitness: ")]
+    got = float(last[-1].split()[1]) if last else None
+    if got != float(episode["fitness"]):
+        raise ReportError(f"the replay of held-out episode {episode['seed']} gives {got}, the run "
+                          f"stored {episode['fitness']!r}: another build or physics?")
+    n = len(post["per_episode"])
+    return (f"held-out episode {episode['seed']}, the one nearest the median of the best's {n} "
+            f"held-out episodes (envelope {post.get('envelope', '?')}): fitness {got:.4f}, the "
+            "stored one bit for bit.")
+
+
+def motion_lines(motion):
+    """summary.md's section on how the replayed gait moves (report_lib.gait_motion)."""
+    def num(v, fmt):
+        return "-" if v is None else format(v, fmt)
+    md = ["", "### How it moves", "",
+          f"Hinge angles after the first {motion['settle']:g} s, from every tick of the replay "
+          "(the dominant frequency is the spectrum's largest peak; `-` for a hinge that swings "
+          "less than 0.5 degree):", "",
+          "| module | mean (deg) | standard deviation | min | max | dominant frequency (Hz) |",
+          "|---|---|---|---|---|---|"]
+    md += [f"| {h['module']} | {h['mean']:.1f} | {h['sd']:.1f} | {h['min']:.1f} | {h['max']:.1f} | "
+           f"{num(h['frequency'], '.2f')} |" for h in motion["hinges"]]
+    md += ["", "Neighbours (the lag at which they correlate best, within half the first one's "
+           "period; positive: the second follows):", "",
+           "| modules | correlation at zero lag | best lag (s) | correlation there |",
+           "|---|---|---|---|"]
+    md += [f"| {a}-{b} | {num(p['correlation'], '.2f')} | {num(p['lag'], '+.2f')} | "
+           f"{num(p['lag_correlation'], '.2f')} |" for p in motion["neighbours"]
+           for a, b in [p["modules"]]]
+    x, y = motion["end"]
+    md += ["", "The centroid's distance from where it was at the first tick: " +
+           ", ".join(f"{d:.2f} m at {t:.1f} s" for t, d in motion["distance"]) +
+           f"; at the end x {x:+.2f}, y {y:+.2f} m."]
+    return md
 
 
 def archive_heatmap(run, out_dir, written):

@@ -2,7 +2,8 @@
 """ahhs-report judge on made-up judgments whose verdicts are known: a step agrees with half of it
 by the rule of ahhs-report steps, a median more than 10 % from the one as evolved is bold, the
 counts say so, a genome that differs and scores higher at the evolved step than at half of it is
-counted; with every genome in the cache
+counted, and so are the genomes that agree at one step and not at the other (McNemar's exact
+test, by hand); with every genome in the cache
 nothing is replayed (no ahhs-replay needed); a damaged cache entry, a run without a
 post-evaluation and a missing directory are one line and exit 1, nothing half-written."""
 import copy
@@ -94,6 +95,14 @@ with tempfile.TemporaryDirectory() as tmp:
             "25 ms with 12.5 ms for 2 of 2.") in md, md
     assert ("- Of the 1 whose 12.5 ms differs from 6.25 ms, 1 score higher at 12.5 ms, the step "
             "they were evolved at.") in md, md
+    # seed-1 agrees at h only, seed-2 at h/2 only: one discordant pair each way, p = 1.
+    assert ("- Genome by genome: 1 agree at 12.5 ms (with 6.25 ms) and not at 6.25 ms (with "
+            "3.125 ms), 1 the other way; McNemar's exact test of whether halving the step "
+            "changes the share that agrees: p = 1.") in md, md
+    # By hand: 0 against 6 discordant genomes, p = 2 / 2^6 = 0.03125; none discordant, p = 1.
+    assert jr.halving_test([False] * 6 + [True] * 3, [True] * 9) == (0, 6, 0.03125)
+    assert jr.halving_test([True, False], [True, False]) == (0, 0, 1.0)
+    assert jr.halving_test([True] * 2 + [False], [False] * 2 + [True])[2] == 1.0
     # Delay: seed-1 at a quarter of a tick moved 8.3 % (kept), at half 11.7 % (bold).
     assert "| E/gait-fixed-ahhs2-20/seed-1 | 0.600 (0.590 / 0.610), 0% | 0.550 (0.540 / 0.560), " \
         "0% | **0.530** (0.520 / 0.540), 0% |" in md, md

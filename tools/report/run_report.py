@@ -139,10 +139,12 @@ def motion_lines(motion):
     md += [f"| {h['module']} | {h['mean']:.1f} | {h['sd']:.1f} | {h['min']:.1f} | {h['max']:.1f} | "
            f"{num(h['frequency'], '.2f')} |" for h in motion["hinges"]]
     md += ["", "Neighbours (the lag at which they correlate best, within half the first one's "
-           "period; positive: the second follows):", "",
+           "period, shown where they correlate there at 0.5 or more; positive: the second "
+           "follows):", "",
            "| modules | correlation at zero lag | best lag (s) | correlation there |",
            "|---|---|---|---|"]
-    md += [f"| {a}-{b} | {num(p['correlation'], '.2f')} | {num(p['lag'], '+.2f')} | "
+    md += [f"| {a}-{b} | {num(p['correlation'], '.2f')} | "
+           f"{num(p['lag'] if (p['lag_correlation'] or 0) >= 0.5 else None, '+.2f')} | "
            f"{num(p['lag_correlation'], '.2f')} |" for p in motion["neighbours"]
            for a, b in [p["modules"]]]
     x, y = motion["end"]

@@ -69,6 +69,8 @@ print(e[len(e) // 2]['seed'])" $post)
   "$bin/ahhs-report" $r -o $tmp/report-post >$tmp/out 2>&1 || fail "report of $r: $(cat $tmp/out)"
   grep -q "held-out episode $seed, the one nearest the median .*, the stored one bit for bit" \
     $tmp/report-post/summary.md || fail "$r: not the median episode $seed: $(cat $tmp/report-post/summary.md)"
+  grep -q "^- what \`ahhs-replay\` says the episode did: .*module halves beyond the wall.*; moved " \
+    $tmp/report-post/summary.md || fail "$r: no behaviour line: $(cat $tmp/report-post/summary.md)"
   [[ $(grep -cE '^\| [0-4] \| -?[0-9]+\.[0-9] \|' $tmp/report-post/summary.md) == 5 ]] ||
     fail "$r: a hinge row per module: $(cat $tmp/report-post/summary.md)"
   rm -rf $tmp/report-post

@@ -102,6 +102,9 @@ def report_runs(args):
                f"- controller graph: {edges} edges (one per rule part that triggered in the replay, "
                "its width by the share of ticks)",
                f"- {strip}"]
+        said = [l[len("behaviour: "):] for l in out.splitlines() if l.startswith("behaviour: ")]
+        if said:
+            md.append(f"- what `ahhs-replay` says the episode did: {said[-1]}")
         if first.scenario_label != "pendulum":
             md += motion_lines(gait_motion(trace, body))
     md += ["", "## Figures", ""] + [f"- `{os.path.basename(p)}`" for p in written

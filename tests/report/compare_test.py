@@ -24,7 +24,11 @@ first = {"study": "paper-2010", "complete_runs": 130, "planned_runs": 130, "clai
     [HIGH, "yes (best 1.88)", "...", "reproduced (n = 10, 10)", "...", "differs: at the wall"],
     [NEIGHBOURS, "most below 0.2", "...", "differs (n = 3 originals, 105 mutants)", None, None],
     [RULES, "many | most", "...", "reproduced (n = 60 genomes)", None, None]]}
-robust = {"study": "paper-2010-robust", "complete_runs": 3, "planned_runs": 60, "claims": [
+robust = {"study": "paper-2010-robust", "complete_runs": 3, "planned_runs": 60, "configs": {
+    "gait-damped-ahhs2-30": {"runs": 2, "robust_source": "50 held-out episodes (envelope paper)"},
+    "gait-damped-ahhs1-120": {"runs": 1, "robust_source": "50 held-out episodes (envelope paper)"},
+    "gait-fixed-ahhs1-80": {"runs": 0, "robust_source": "8 friction-perturbed replays"}},
+    "claims": [
     [HIGH, "yes (best 1.88)", "...", "open", "...", "open"],
     [NEIGHBOURS, "most below 0.2", "...", "open", None, None]]}
 choices = {"study": "pendulum-choices", "complete_runs": 120, "planned_runs": 120, "claims": [
@@ -77,9 +81,14 @@ with tempfile.TemporaryDirectory() as tmp:
             "|") in fixed, fixed
     # A "|" inside a cell would split the table's row.
     assert "| many / most |" in md, md
-    assert "- **robust**: study `paper-2010-robust`, 3 of 60 runs complete" in md, md
+    # Each study says what its robust fitness is the median of (a configuration without runs
+    # does not count); a study whose report has no configurations says nothing of it.
+    assert ("- **robust**: study `paper-2010-robust`, 3 of 60 runs complete; robust fitness: the "
+            "median of 50 held-out episodes (envelope paper)\n") in md, md
+    assert "- **first**: study `paper-2010`, 130 of 130 runs complete\n" in md, md
     data = json.load(open(os.path.join(out, "compare.json")))
     assert [s["label"] for s in data["studies"]] == ["first", "robust", "choices"], data
+    assert data["studies"][0]["robust_fitness"] is None, data
     assert data["tasks"]["pendulum"][0]["verdicts"][1] == [None, None], data
 
     # Without labels the studies' names head the columns; an existing comparison is replaced only
@@ -115,4 +124,8 @@ with tempfile.TemporaryDirectory() as tmp:
 assert cr.task_of("Gait: rules that never or seldom trigger") == "gait"
 assert cr.task_of("Fixed gait: AHHS2-20 has the lowest best fitness") == "gait-fixed"
 assert cr.task_of("Something else") == "other"
+# Two sources in one study: each with the configurations it holds for.
+assert cr.robust_sources_text([("a", "8 replays"), ("b", "50 held-out episodes"),
+                               ("c", "8 replays")]) == \
+    "the median of 8 replays (a, c); 50 held-out episodes (b)"
 print("compare: PASS")

@@ -6,6 +6,8 @@ and writes into OUT_DIR:
                 row per claim, the paper's statement, then each study's verdict on its runs'
                 best fitness and, where it judged the claim twice, on their robust fitness
   compare.json  the same rows
+Each study's line says what its robust fitness is the median of (friction-perturbed replays, or
+held-out episodes under an envelope), from its configurations' `robust_source`.
 Nothing is recomputed: every verdict is the one its study's report gave (with its n), so the
 tables can be rebuilt from the studies' exports alone (`ahhs-study report EXPORT -o DIR` each,
 then this). A claim that a study does not make is "-" in its columns; a study that makes none of
@@ -16,7 +18,7 @@ import argparse
 import json
 import os
 
-from report_lib import ReportError, UsageError, prepare_out
+from report_lib import ReportError, UsageError, prepare_out, robust_sources_text
 
 # (key, heading, the claims it holds: by how their text starts)
 TASKS = [
@@ -41,7 +43,8 @@ def canonical(claim):
 
 
 def load_report(directory):
-    """A study report's results.json: (study name, complete runs, planned runs, claim rows)."""
+    """A study report's results.json: (study name, complete runs, planned runs, claim rows, what
+    its robust fitness is in words or None)."""
     path = os.path.join(directory, "results.json")
     try:
         with open(path) as f:
@@ -54,15 +57,20 @@ def load_report(directory):
     if not isinstance(claims, list) or not all(
             isinstance(r, list) and len(r) == 6 and isinstance(r[0], str) for r in claims):
         raise ReportError(f"{path}: not a study report's results.json (no claim rows)")
+    configs = results.get("configs")
+    sources = [(str(name), c.get("robust_source")) for name, c in configs.items()
+               if isinstance(c, dict) and c.get("runs") and c.get("robust_source")
+               ] if isinstance(configs, dict) else []
     return (str(results.get("study", os.path.basename(os.path.normpath(directory)))),
-            results.get("complete_runs"), results.get("planned_runs"), claims)
+            results.get("complete_runs"), results.get("planned_runs"), claims,
+            robust_sources_text(sources) if sources else None)
 
 
 def compare(reports):
     """Rows per task from [(name, complete, planned, claims)]: {"task": [{"claim", "paper",
     "verdicts": [[best, robust] per study]}]}, claims in the order first seen."""
     rows = {}
-    for k, (_, _, _, claims) in enumerate(reports):
+    for k, (_, _, _, claims, _) in enumerate(reports):
         for claim, paper, _, verdict, _, verdict_robust in claims:
             key = canonical(claim)
             row = rows.get(key)
@@ -87,7 +95,8 @@ def write_compare(out, reports, labels, tasks):
           "fitness, on the robust fitness of each run's best genome. \"-\": the study does not "
           "judge that claim.", ""]
     md += [f"- **{label}**: study `{name}`, {done} of {planned} runs complete"
-           for label, (name, done, planned, _) in zip(labels, reports)]
+           + (f"; robust fitness: {robust}" if robust else "")
+           for label, (name, done, planned, _, robust) in zip(labels, reports)]
     headings = {key: heading for key, heading, _ in TASKS}
     headings["other"] = "Other claims"
     for key in [k for k, _, _ in TASKS] + ["other"]:
@@ -112,8 +121,9 @@ def write_compare(out, reports, labels, tasks):
         f.write("\n".join(md) + "\n")
     with open(os.path.join(out, "compare.json"), "w") as f:
         json.dump({"studies": [{"label": label, "study": name, "complete_runs": done,
-                                "planned_runs": planned}
-                               for label, (name, done, planned, _) in zip(labels, reports)],
+                                "planned_runs": planned, "robust_fitness": robust}
+                               for label, (name, done, planned, _, robust)
+                               in zip(labels, reports)],
                    "tasks": tasks}, f, indent=1)
         f.write("\n")
 
@@ -133,7 +143,7 @@ def main(argv):
         raise UsageError(f"{len(args.label)} --label for {len(args.reports)} reports: give one "
                          "per report, or none")
     reports = [load_report(d) for d in args.reports]
-    labels = args.label or [name for name, _, _, _ in reports]
+    labels = args.label or [name for name, *_ in reports]
     if len(set(labels)) != len(labels):
         raise UsageError("two reports have the same label; name them with --label")
     prepare_out(args.out, args.overwrite)

@@ -654,6 +654,18 @@ def is_report_file(path, allow_dirs):
     return os.path.isfile(path) and path.endswith(REPORT_FILES)
 
 
+def robust_sources_text(pairs):
+    """What robust fitness is the median of, in words, from (configuration, source) pairs: one
+    source alone, or each with the configurations it holds for."""
+    sources = OrderedDict()
+    for name, source in pairs:
+        if source:
+            sources.setdefault(source, []).append(name)
+    if len(sources) <= 1:
+        return "the median of " + (next(iter(sources)) if sources else "its replays")
+    return "the median of " + "; ".join(f"{s} ({', '.join(n)})" for s, n in sources.items())
+
+
 def prepare_out(out, overwrite, allow_dirs=False):
     """Makes the output directory. An old report in it is replaced only with --overwrite (so
     that no stale figure survives); a directory holding anything else is never emptied. A study

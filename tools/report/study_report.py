@@ -33,8 +33,8 @@ import numpy as np
 
 from claims_lib import VERDICTS, fmt, merge_claims
 from report_lib import (ReportError, Run, UsageError, box_figure, find_bin, prepare_out,
-                        rule_edges, rule_parts, replay_post_eval, run_replay,
-                        scenario_label_of)
+                        robust_sources_text, rule_edges, rule_parts, replay_post_eval,
+                        run_replay, scenario_label_of)
 from run_report import report_neighbourhood, report_runs
 
 SELDOM = 0.01  # a rule part active in fewer ticks than this triggers "seldom"
@@ -405,13 +405,7 @@ def beyond_sentence(configs):
 
 def robust_sources(configs):
     """What each configuration's robust fitness is the median of, in words."""
-    sources = OrderedDict()
-    for c in configs:
-        if c.runs and c.robust_source:
-            sources.setdefault(c.robust_source, []).append(c.name)
-    if len(sources) <= 1:
-        return "the median of " + (next(iter(sources)) if sources else "its replays")
-    return "the median of " + "; ".join(f"{s} ({', '.join(n)})" for s, n in sources.items())
+    return robust_sources_text((c.name, c.robust_source) for c in configs if c.runs)
 
 
 def write_results(args, name, configs, scenarios, maxima, claims):

@@ -2,11 +2,13 @@
 """The numbers `ahhs-report RUN` gives beside a gait replay's filmstrip (report_lib.gait_motion),
 on a made-up trace whose answers are known by hand: two hinges swinging 20 degrees around 10 at
 1 Hz, the second 0.2 s behind (zero-lag correlation cos(2 pi 0.2) = 0.309, best lag +0.2 s), a
-hinge that holds still, a swing fast enough that a once-a-second sample would alias it, and a
-centroid moving 1 cm per second; the held-out episode a report replays is the one at n // 2 of
+hinge that holds still, a swing fast enough that a once-a-second sample would alias it, a small
+swing on top of a large change of posture, a regular kick, noise, and a centroid moving 1 cm per
+second; the held-out episode a report replays is the one at n // 2 of
 the sorted fitnesses; an episode too short to judge is one clear error."""
 import math
 import os
+import random
 import sys
 import tempfile
 
@@ -58,9 +60,12 @@ with tempfile.TemporaryDirectory() as tmp:
     check(near(h[0]["min"], -10, 1e-3) and near(h[0]["max"], 30, 1e-3), f"min and max: {h[0]}")
     check(near(h[0]["frequency"], 1.0, 1e-9) and near(h[1]["frequency"], 1.0, 1e-9),
           f"1 Hz: {h[0]['frequency']}, {h[1]['frequency']}")
-    check(near(h[3]["frequency"], 3.75, 1e-9), f"3.75 Hz, not an alias: {h[3]['frequency']}")
-    check(h[2]["frequency"] is None and near(h[2]["mean"], -1, 1e-9) and h[2]["sd"] < 1e-9,
-          f"a still hinge: {h[2]}")
+    # The swing is taken on 51 s (half the 5-s window off each end): bins of 1 / 51 Hz.
+    check(near(h[3]["frequency"], 3.75, 0.5 / 51), f"3.75 Hz, not an alias: {h[3]['frequency']}")
+    check(all(near(x["swing_sd"], 20 / math.sqrt(2), 0.3) and x["share"] > 0.95
+              for x in (h[0], h[1], h[3])), f"a sine is all swing, all at its rhythm: {h}")
+    check(h[2]["frequency"] is None and h[2]["share"] is None and near(h[2]["mean"], -1, 1e-9)
+          and h[2]["sd"] < 1e-9 and h[2]["swing_sd"] < 1e-9, f"a still hinge: {h[2]}")
     n = m["neighbours"]
     check(near(n[0]["correlation"], math.cos(2 * math.pi * 0.2), 1e-3),
           f"zero-lag correlation {n[0]['correlation']}")
@@ -78,6 +83,20 @@ with tempfile.TemporaryDirectory() as tmp:
     # The second neighbour leading: a negative lag.
     trace, body = write(tmp, [wave(0.2), wave(0.0)], 60.95)
     check(near(rl.gait_motion(trace, body)["neighbours"][0]["lag"], -0.2, 1e-9), "a lead")
+    # A swing of 5 degrees at 1.5 Hz on top of a change of posture from -60 to +60 degrees at
+    # 30 s: the posture is in the standard deviation, the swing and its rhythm are the sine's.
+    # A kick of a quarter of each second (+20 degrees, else -15): 1 Hz, its harmonics holding
+    # much of the rest. Noise: no rhythm.
+    rng = random.Random(1)
+    trace, body = write(tmp, [lambda t: (-60 if t < 30 else 60) + 5 * math.sin(3 * math.pi * t),
+                              lambda t: 20 if t % 1 < 0.25 else -15,
+                              lambda t: rng.gauss(0, 10)], 60.95)
+    h = rl.gait_motion(trace, body)["hinges"]
+    check(near(h[0]["sd"], 60, 2) and near(h[0]["swing_sd"], 5 / math.sqrt(2), 0.5)
+          and near(h[0]["frequency"], 1.5, 0.5 / 51) and h[0]["share"] > 0.8,
+          f"a swing on a change of posture: {h[0]}")
+    check(near(h[1]["frequency"], 1.0, 1e-9) and 0.4 < h[1]["share"] < 0.7, f"a kick: {h[1]}")
+    check(h[2]["share"] < 0.1, f"noise: {h[2]}")
     # A short episode settles for a quarter of it; one without ticks after that is an error.
     trace, body = write(tmp, [wave(0.0), wave(0.1)], 3.0)
     check(rl.gait_motion(trace, body)["settle"] == 0.75, "a 3-s episode settles 0.75 s")

@@ -12,10 +12,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
-from report_lib import (ReportError, Run, box_figure, controller_graph, envelope_argv,  # noqa: E402
-                        filmstrip, find_bin, fitness_figure, gait_motion, median_episode,
-                        prepare_out, replay_figures, rule_parts, run_replay, save,
-                        stored_post_eval)
+from report_lib import (RHYTHM_BAND, SWING_WINDOW, ReportError, Run, box_figure,  # noqa: E402
+                        controller_graph, envelope_argv, filmstrip, find_bin, fitness_figure,
+                        gait_motion, median_episode, prepare_out, replay_figures, rule_parts,
+                        run_replay, save, stored_post_eval)
 
 
 def report_runs(args):
@@ -134,15 +134,20 @@ def motion_lines(motion):
     def num(v, fmt):
         return "-" if v is None else format(v, fmt)
     md = ["", "### How it moves", "",
-          f"Hinge angles after the first {motion['settle']:g} s, from every tick of the replay "
-          "(the dominant frequency is the spectrum's largest peak; `-` for a hinge that swings "
-          "less than 0.5 degree):", "",
-          "| module | mean (deg) | standard deviation | min | max | dominant frequency (Hz) |",
-          "|---|---|---|---|---|---|"]
+          f"Hinge angles after the first {motion['settle']:g} s, from every tick of the replay. "
+          f"The swing is the angle around its running median over {SWING_WINDOW:g} s (a change "
+          "of posture moves the mean and standard deviation, not the swing); its rhythm is the "
+          "largest peak of the swing's spectrum, and the share is the swing's power within "
+          f"{RHYTHM_BAND:g} Hz of it: 1 for a pure swing, about 0.5 for a regular kick, 0.1-0.3 "
+          "for an irregular jitter (`-` for a swing under 0.5 degree):", "",
+          "| module | mean (deg) | standard deviation | min | max | swing: standard deviation "
+          "| rhythm (Hz) | share there |",
+          "|---|---|---|---|---|---|---|---|"]
     md += [f"| {h['module']} | {h['mean']:.1f} | {h['sd']:.1f} | {h['min']:.1f} | {h['max']:.1f} | "
-           f"{num(h['frequency'], '.2f')} |" for h in motion["hinges"]]
+           f"{h['swing_sd']:.1f} | {num(h['frequency'], '.2f')} | {num(h['share'], '.2f')} |"
+           for h in motion["hinges"]]
     md += ["", "Neighbours (the lag at which they correlate best, within half the first one's "
-           "period, shown where they correlate there at 0.5 or more; positive: the second "
+           "rhythm period, shown where they correlate there at 0.5 or more; positive: the second "
            "follows):", "",
            "| modules | correlation at zero lag | best lag (s) | correlation there |",
            "|---|---|---|---|"]

@@ -67,7 +67,7 @@ def load_report(directory):
 
 
 def compare(reports):
-    """Rows per task from [(name, complete, planned, claims)]: {"task": [{"claim", "paper",
+    """Rows per task from load_report's tuples: {"task": [{"claim", "paper",
     "verdicts": [[best, robust] per study]}]}, claims in the order first seen."""
     rows = {}
     for k, (_, _, _, claims, _) in enumerate(reports):

@@ -562,12 +562,12 @@ RHYTHM_BAND = 0.1  # Hz: either side of the rhythm, for its share of the swing
 
 
 def hinge_swing(a, dt):
-    """A hinge trace's swing (degrees per tick) around its running median over SWING_WINDOW s,
-    which follows a change of posture without smearing it; half a window is left off at each
-    end. (swing's standard deviation, rhythm, share): the rhythm is the largest peak of the
+    """A hinge trace's swing (degrees, one value per tick) around its running median over
+    SWING_WINDOW s, which follows a change of posture without smearing it; half a window is
+    left off at each end. (swing's standard deviation, rhythm, share): the rhythm is the largest peak of the
     swing's spectrum (per tick, so no swing up to half the tick rate aliases), its share the
     swing's power within RHYTHM_BAND of it (1 for a sine, about 0.5 for a regular kick, a few
-    hundredths for noise); both None for a swing under 0.5 degree."""
+    hundredths for noise); rhythm and share are None for a swing under 0.5 degree."""
     n = (max(1, min(int(round(SWING_WINDOW / dt)), len(a) // 3)) if dt > 0 else 1) | 1
     h = n // 2
     swing = (a - median_filter(a, size=n, mode="nearest"))[h:len(a) - h]

@@ -6,6 +6,7 @@ report draws the archive; ahhs-evolve refuses to resume such a run."""
 import json
 import os
 import random
+import shutil
 import signal
 import sqlite3
 import subprocess
@@ -78,6 +79,7 @@ class FinishByTest(unittest.TestCase):
 class SearchTest(unittest.TestCase):
     def run_killed_and_whole(self, script, options, generations, evaluation=()):
         tmp = tempfile.mkdtemp(prefix="ahhs-search-")
+        self.addCleanup(shutil.rmtree, tmp, ignore_errors=True)
         whole, killed = os.path.join(tmp, "whole"), os.path.join(tmp, "killed")
         argv = (example(script) + options + ["--generations", str(generations)] + FARM + TASK +
                 list(evaluation))
@@ -160,7 +162,9 @@ class SearchTest(unittest.TestCase):
         # A search started in the background by a script (its shell has it ignore SIGINT), then
         # SIGINT to its process only: it stops its service, says how to go on and exits 130; the
         # run resumes. (It used to ignore the signal, and its service went on.)
-        run_dir = os.path.join(tempfile.mkdtemp(prefix="ahhs-search-"), "run")
+        tmp = tempfile.mkdtemp(prefix="ahhs-search-")
+        self.addCleanup(shutil.rmtree, tmp, ignore_errors=True)
+        run_dir = os.path.join(tmp, "run")
         argv = (example("cmaes.py") + [run_dir, "--population", "8", "--generations", "12"] +
                 FARM + TASK + ["--validation", "3", "--post-eval", "4"])
         p = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,

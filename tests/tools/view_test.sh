@@ -45,7 +45,8 @@ run_lockstep() {
 alone=$(run_lockstep --log launched.lcm)
 [[ -n "$alone" ]] || fail "lockstep episode alone"
 start_view --lcm-url "$url" --arena VIEW4 --rate 200
-"$bin/ahhs-capture" probe "$page" --hold 60 --timeout 90 >/dev/null 2>&1 &
+mkdir probe-tmp  # the probe's own TMPDIR: killed, it must leave nothing in it
+TMPDIR=$tmp/probe-tmp "$bin/ahhs-capture" probe "$page" --hold 60 --timeout 90 >/dev/null 2>&1 &
 probe=$!
 for _ in $(seq 300); do grep -q "a page connected" view.out && break; sleep 0.1; done
 grep -q "a page connected" view.out || fail "no page connected: $(cat view.out)"
@@ -56,6 +57,10 @@ wait $view 2>/dev/null
 vanished=$(run_lockstep)
 kill $probe 2>/dev/null
 wait $probe 2>/dev/null
+probe_rc=$?
+[[ $probe_rc == 143 ]] || fail "ahhs-capture on SIGTERM: exit $probe_rc, not 143"
+left=$(ls -A probe-tmp)
+[[ -z "$left" ]] || fail "ahhs-capture killed by SIGTERM left its temporary files: $left"
 [[ "$stalled" == "$alone" ]] || fail "fitness alone $alone, with a stalled viewer $stalled"
 watched=$vanished
 [[ "$watched" == "$alone" ]] || fail "fitness alone $alone, with a vanishing viewer $watched"

@@ -13,7 +13,9 @@ no display), and the page's own API (window.ahhs) positions each frame.
   ahhs-capture filmstrip URL OUT.png [--frames 8] [--size 1280x720]
       frames spread evenly over the episode, in a grid of 4 columns
 
-Exit codes: 0 done, 1 failed (Chromium, the page or ffmpeg; one line on stderr), 2 usage.
+Exit codes: 0 done, 1 failed (Chromium, the page or ffmpeg; one line on stderr), 2 usage,
+130 interrupted (SIGINT), 143 terminated (SIGTERM); on every exit Chromium is closed and its
+temporary profile removed, and no partial output is left.
 Output files are written under a temporary name and renamed when complete.
 """
 
@@ -23,6 +25,7 @@ import io
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -40,10 +43,18 @@ class Chromium:
 
     def __init__(self, width, height, timeout=60.0):
         self.timeout = timeout
-        self.profile = tempfile.mkdtemp(prefix="ahhs-capture-")
         exe = shutil.which("chromium") or shutil.which("chromium-browser")
         if not exe:
             raise CaptureError("chromium not found (tools/install-deps installs Debian's chromium)")
+        self.proc = None
+        self.profile = tempfile.mkdtemp(prefix="ahhs-capture-")
+        try:
+            self._start(exe, width, height)
+        except BaseException:
+            self.close()  # a Chromium that did not come up leaves no process and no profile
+            raise
+
+    def _start(self, exe, width, height):
         to_chrome_r, self.to_chrome = os.pipe()
         self.from_chrome, from_chrome_w = os.pipe()
 
@@ -157,6 +168,12 @@ class Chromium:
         return base64.b64decode(self.call("Page.captureScreenshot", params)["data"])
 
     def close(self):
+        if self.proc is None:  # Chromium never started: only the pipes and the profile
+            for fd in (getattr(self, "to_chrome", None), getattr(self, "from_chrome", None)):
+                if fd is not None:
+                    os.close(fd)
+            shutil.rmtree(self.profile, ignore_errors=True)
+            return
         if self.proc.poll() is None:
             try:
                 self.call("Browser.close")
@@ -347,6 +364,9 @@ def main():
     f.add_argument("out")
     f.add_argument("--frames", type=int, default=8)
     args = ap.parse_args()
+    # SIGTERM (a test's `kill`, a job scheduler) unwinds like SIGINT, so the `finally` blocks
+    # close Chromium and remove its profile instead of leaving both behind.
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
     try:
         {"probe": probe, "video": video, "filmstrip": filmstrip}[args.cmd](args)
     except CaptureError as e:

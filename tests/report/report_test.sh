@@ -45,6 +45,14 @@ for f in fitness box_best box_speed hormones trace sensors rules controller; do
     [[ -s $tmp/report/$f.$ext ]] || fail "missing or empty: $f.$ext"
   done
 done
+# Every run is a point over its configuration's box: 3 + 3 pendulum runs and the gait's one.
+python3 - $tmp/report/box_best.svg <<'PY' || fail "box_best.svg: not a point per run"
+import sys, xml.etree.ElementTree as ET
+svg = "{http://www.w3.org/2000/svg}"
+runs = {g.get("id"): len(g.findall(".//" + svg + "use"))
+        for g in ET.parse(sys.argv[1]).iter(svg + "g") if (g.get("id") or "").startswith("runs-")}
+assert sorted(runs.values()) == [1, 3, 3], runs
+PY
 [[ -s $tmp/report/controller.dot && -s $tmp/report/replay.lcm && -s $tmp/report/replay-trace.csv ]] || fail "replay files"
 grep -q "cart_x,pole_angle" $tmp/report/replay-body.csv || fail "the pendulum's body trace"
 [[ ! -e $tmp/report/hinges.png ]] || fail "a hinge panel for the pendulum"

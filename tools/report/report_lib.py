@@ -4,6 +4,7 @@ import argparse
 import json
 import math
 import os
+import re
 import shutil
 import sqlite3
 import subprocess
@@ -229,9 +230,10 @@ def fitness_figure(groups, out_dir, written):
 
 
 def box_figure(groups, values, ylabel, title, name, out_dir, written, integer=False):
-    """One panel per scenario label. A configuration with fewer than 2 runs is drawn as its
-    points, without a box, and takes part in no test; tests compare configurations of one scenario
-    label only."""
+    """One panel per scenario label: a box per configuration and every run as a point over it
+    (spread sideways by a fixed golden-ratio sequence, so the same data give the same figure). A
+    configuration with fewer than 2 runs has no box and takes part in no test; tests compare
+    configurations of one scenario label only."""
     scenarios = scenarios_of(groups)
     width = max(4, 2.2 * max(len(l) for l in scenarios.values()))
     fig, axes = plt.subplots(1, len(scenarios), figsize=(width * len(scenarios), 4.8),
@@ -241,10 +243,12 @@ def box_figure(groups, values, ylabel, title, name, out_dir, written, integer=Fa
         data = [values[l] for l in labels]
         boxed = [i for i, d in enumerate(data) if len(d) >= 2]
         if boxed:
-            ax.boxplot([data[i] for i in boxed], positions=[i + 1 for i in boxed], widths=0.5)
+            ax.boxplot([data[i] for i in boxed], positions=[i + 1 for i in boxed], widths=0.5,
+                       showfliers=False)
         for i, d in enumerate(data):
-            if len(d) < 2:
-                ax.plot([i + 1] * len(d), d, "o", color="black")
+            spread = [((k * 0.6180339887) % 1.0 - 0.5) * 0.3 for k in range(len(d))]
+            ax.plot([i + 1 + x for x in spread], d, "o", color="black", alpha=0.45,
+                    markersize=4, zorder=3, gid="runs-" + re.sub(r"[^\w-]", "_", labels[i]))
         ax.set_xticks(range(1, len(labels) + 1))
         ax.set_xticklabels([f"{l}\nn={len(d)}" for l, d in zip(labels, data)], fontsize=8)
         ax.set_xlim(0.5, len(labels) + 0.5)

@@ -42,10 +42,12 @@ def report_runs(args):
                 g, censored = int(r.generation[-1]) + 1, censored + 1
             speed[l].append(g)
     best_tests = box_figure(groups, best, "best fitness of the run",
-                            "Best fitness per configuration (two-sided Wilcoxon rank-sum, n >= 2)",
+                            "Best fitness per configuration, a point per run "
+                            "(two-sided Wilcoxon rank-sum, n >= 2)",
                             "box_best", args.out, written)
     speed_tests = box_figure(groups, speed, "generation",
-                             "Generation reaching 75 % of its setting's maximum fitness",
+                             "Generation reaching 75 % of its setting's maximum fitness, a point "
+                             "per run",
                              "box_speed", args.out, written, integer=True)
     md = ["# AHHS run report", ""]
     md += ["| configuration | runs | best fitness: median | min | max | generation to 75 %: median |",

@@ -337,7 +337,8 @@ def report_study(args):
         if robust:
             box_figure({c.name: c.runs for c in robust}, {c.name: list(c.robust) for c in robust},
                        "robust fitness of the run's best", "Robust fitness of each run's best "
-                       f"genome (median of {robust[0].robust_source}), Wilcoxon rank-sum",
+                       f"genome, the median of {robust[0].robust_source}; a point per run; "
+                       "two-sided Wilcoxon rank-sum",
                        "box_robust", os.path.join(args.out, scenario), [])
     make_claims = claims_of(name)
     claims = merge_claims(make_claims(configs, maxima, "best"),

@@ -9,8 +9,12 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 namespace ahhs::base {
 
@@ -101,6 +105,64 @@ int RunChildToEnd(const std::vector<std::string>& argv,
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status);
+}
+
+pid_t ParentPidFromStat(const std::string& stat) {
+  const auto close = stat.rfind(')');
+  if (close == std::string::npos) return -1;
+  std::istringstream rest(stat.substr(close + 1));
+  std::string state;
+  long ppid = -1;
+  if (!(rest >> state >> ppid) || ppid < 0) return -1;
+  return static_cast<pid_t>(ppid);
+}
+
+std::vector<ProcessSample> DescendantSamples() {
+  std::map<pid_t, std::vector<std::pair<pid_t, char>>> children;  // by parent: pid, state
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc", ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream f(entry.path() / "stat");
+    std::string line;
+    if (!std::getline(f, line)) continue;  // ended meanwhile
+    const pid_t ppid = ParentPidFromStat(line);
+    const auto close = line.rfind(')');
+    if (ppid > 0 && close + 2 < line.size())
+      children[ppid].emplace_back(static_cast<pid_t>(std::stol(name)), line[close + 2]);
+  }
+  std::vector<ProcessSample> out;
+  std::vector<pid_t> todo{getpid()};
+  while (!todo.empty()) {
+    const pid_t pid = todo.back();
+    todo.pop_back();
+    for (const auto& [child, state] : children[pid]) {
+      std::ifstream f("/proc/" + std::to_string(child) + "/schedstat");
+      std::int64_t cpu = 0;
+      if (f >> cpu) out.push_back({child, state, cpu});
+      todo.push_back(child);
+    }
+  }
+  return out;
+}
+
+bool CpuStarvation::Starved() {
+  const auto now = std::chrono::steady_clock::now();
+  if (sampled_ && now - at_ < interval_) return starved_;
+  std::vector<ProcessSample> samples = DescendantSamples();
+  if (sampled_) {
+    const double wall_ns = std::chrono::duration<double, std::nano>(now - at_).count();
+    starved_ = false;
+    for (const ProcessSample& s : samples)
+      for (const ProcessSample& before : last_)
+        if (s.pid == before.pid && s.state == 'R' && before.state == 'R' &&
+            static_cast<double>(s.cpu_ns - before.cpu_ns) < share_ * wall_ns)
+          starved_ = true;
+  }
+  sampled_ = true;
+  at_ = now;
+  last_ = std::move(samples);
+  return starved_;
 }
 
 std::string HostName() {

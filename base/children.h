@@ -6,6 +6,7 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -42,6 +43,41 @@ std::string DescribeExit(int status);
 
 // This machine's host name ("localhost" when it has none): names workers and runs.
 std::string HostName();
+
+// The parent pid in a /proc/PID/stat line, or -1 when the line is malformed. The command name
+// may hold spaces and parentheses: the fields after it begin after its last ')'.
+pid_t ParentPidFromStat(const std::string& stat);
+
+// This process's descendants (its children, theirs, ...) as /proc shows them now: each one's
+// pid, scheduler state ('R' running or waiting for a CPU, 'S' asleep, ...) and CPU time in
+// nanoseconds (/proc/PID/schedstat). Empty where /proc does not give them.
+struct ProcessSample {
+  pid_t pid = 0;
+  char state = '?';
+  std::int64_t cpu_ns = 0;
+};
+std::vector<ProcessSample> DescendantSamples();
+
+// Whether this process's descendants are starved of CPU: a descendant that is runnable ('R')
+// now and was runnable at the sample before, at least `interval` ago, but ran for less than
+// `share` of the time between them, is waiting for a CPU that the machine gives to others (a
+// busy machine that runs it at idle priority); one that runs (a busy loop on an idle machine)
+// or sleeps (waiting, hung) is not starved. Starved() samples at most once per `interval` and
+// otherwise returns its last answer; its first answer is false.
+class CpuStarvation {
+ public:
+  explicit CpuStarvation(std::chrono::milliseconds interval = std::chrono::seconds(1),
+                         double share = 0.5)
+      : interval_(interval), share_(share) {}
+  bool Starved();
+
+ private:
+  std::chrono::milliseconds interval_;
+  double share_;
+  bool sampled_ = false, starved_ = false;
+  std::chrono::steady_clock::time_point at_;
+  std::vector<ProcessSample> last_;
+};
 
 // A set of named children. The destructor stops those still running (SIGTERM, then SIGKILL).
 class ChildProcesses {

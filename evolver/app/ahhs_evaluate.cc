@@ -61,6 +61,8 @@ int main(int argc, char** argv) {
     ev::FarmEvaluator::Hooks hooks;
     hooks.interrupted = [] { return g_interrupts > 0; };
     hooks.report = [](const std::string& text) { std::cerr << "ahhs-evaluate: " << text << '\n'; };
+    ahhs::base::CpuStarvation starvation;
+    hooks.workers_starved = [&] { return starvation.Starved(); };
     ev::FarmEvaluator farm(bus.get(), setup.farm, hooks);
     const std::string ready = ev::WaitForFarmWorkers(options.farm, &farm);
     if (!ready.empty()) std::cerr << "ahhs-evaluate: " << ready << '\n';

@@ -148,6 +148,8 @@ int main(int argc, char** argv) {
       progress.Evaluated(current_generation, done, total);
     };
     hooks.report = [&](const std::string& text) { progress.Say(text); };
+    ahhs::base::CpuStarvation starvation;
+    hooks.workers_starved = [&] { return starvation.Starved(); };
     ev::FarmEvaluator farm(bus.get(), ev::FarmOptionsFor(options, config, wire_run), hooks);
     if (to_evaluate) {
       const std::string ready = ev::WaitForFarmWorkers(options.farm, &farm);

@@ -217,7 +217,16 @@ void FarmEvaluator::CheckWorkers(Batch* batch, FarmClock::time_point now) {
     batch->last_worker_seen = now;
     return;
   }
+  const bool starved = hooks_.workers_starved();
   if (now - batch->last_worker_seen <= options_.no_worker_timeout) return;
+  if (starved) {
+    // Alive, but the machine gives them no CPU: waited for, as the evolver's own pause is.
+    hooks_.report("no worker has answered for " +
+                  std::to_string(options_.no_worker_timeout.count() / 1000) +
+                  " s, but the local workers are waiting for a CPU (a busy machine): waiting on");
+    batch->last_worker_seen = now;
+    return;
+  }
   std::string why = "no evaluation worker has answered for " +
                     std::to_string(options_.no_worker_timeout.count() / 1000) +
                     " s (start one with ahhs-worker, or give ahhs-evolve --workers N)";

@@ -67,11 +67,15 @@ class FarmEvaluator : public FitnessEvaluator {
   // `interrupted()` is asked every loop (Ctrl-C); `poll()` is called every loop for the owner's
   // housekeeping (e.g. restarting local workers); `progress(done, total)` after every result;
   // `report(text)` gets one line per notable event (refused worker, re-issue, invalid result).
+  // `workers_starved()` is asked every loop while no worker is heard: true when the owner's
+  // local workers are alive but waiting for a CPU (a busy machine runs them at idle priority);
+  // then the time without workers does not count.
   struct Hooks {
     std::function<bool()> interrupted = [] { return false; };
     std::function<void()> poll = [] {};
     std::function<void(std::size_t, std::size_t)> progress = [](std::size_t, std::size_t) {};
     std::function<void(const std::string&)> report = [](const std::string&) {};
+    std::function<bool()> workers_starved = [] { return false; };
   };
 
   FarmEvaluator(bus::Bus* bus, FarmOptions options, Hooks hooks);

@@ -9,7 +9,8 @@
 #     version, garbage on every farm channel: the run completes with identical results and
 #     reports what happened; a worker refuses a request of another protocol version;
 #  4. bad input: an existing run directory, bad options, a directory that is not a run, no
-#     worker at all: clear messages, non-zero exits, nothing overwritten;
+#     worker at all: clear messages, non-zero exits, nothing overwritten; local workers that are
+#     silent because they wait for a CPU are waited for;
 #  5. runs are isolated: two runs on one bus never use each other's local workers, a worker
 #     told to serve another run is passed over, and a worker must be told what to serve.
 bin=${1:?usage: evolve_test.sh BIN_DIR}
@@ -116,6 +117,33 @@ kids=$(pgrep -P $pid | tr '\n' ' ')
 kill -STOP $pid $kids; sleep 12; kill -CONT $pid $kids
 wait $pid || fail "paused run: $(tail -3 $tmp/paused.out)"
 same_run $tmp/whole $tmp/paused "paused 12 s with --worker-wait 2"
+fi
+if ! ci_tier_only "local workers starved of CPU by busy loops"; then
+# Local workers that a busy machine runs at idle priority (a study under `chrt -i 0` beside a
+# report) are silent for longer than the workers' silence limit (10 s) and --worker-wait: they
+# are alive and waiting for a CPU, not missing. The run waits for them, says so, and ends as the
+# uninterrupted one (before, it ended with "no evaluation worker has answered"). The busy loops
+# run until the evolver has said it waits (at most 60 s each).
+starve="--scenario gait --hormones 3 --rules 6 --population 8 --generations 4 --duration 200 --seed 13 --lcm-url $url"
+$E $starve --out $tmp/fed --workers 2 >/dev/null 2>&1 || fail "uninterrupted 200-s run"
+$E $starve --out $tmp/starved --workers 2 --worker-wait 2 >$tmp/starved.out 2>&1 &
+pid=$!
+for _ in $(seq 1 600); do [[ $(wc -l 2>/dev/null <$tmp/starved/generations.csv || echo 0) -gt 1 ]] && break; sleep 0.01; done
+for k in $(pgrep -P $pid); do chrt --idle -p 0 $k >/dev/null || fail "chrt --idle"; done
+hogs=()
+for _ in 1 2 3 4 5 6; do
+  bash -c 'end=$((SECONDS + 60)); while ((SECONDS < end)); do :; done' & hogs+=($!)
+done
+for _ in $(seq 1 600); do
+  grep -q "waiting for a CPU" $tmp/starved.out && break
+  kill -0 $pid 2>/dev/null || break
+  sleep 0.1
+done
+kill "${hogs[@]}" 2>/dev/null; wait "${hogs[@]}" 2>/dev/null
+wait $pid || fail "starved run: $(tail -3 $tmp/starved.out)"
+grep -q "but the local workers are waiting for a CPU (a busy machine): waiting on" $tmp/starved.out ||
+  fail "the workers were never starved long enough: $(tail -3 $tmp/starved.out)"
+same_run $tmp/fed $tmp/starved "workers starved of CPU, with --worker-wait 2"
 fi
 
 echo "== 2b. robust evolution: 3 trials under the envelope, killed and resumed, external workers"

@@ -26,8 +26,8 @@ TEST_CASE("descendants are sampled with their state: a sleeping child is asleep,
   std::vector<ahhs::base::ProcessSample> samples;
   for (int i = 0; i < 200; ++i) {  // until the child has exec'd and sleeps
     samples = DescendantSamples();
-    const auto it = std::find_if(samples.begin(), samples.end(),
-                                 [&](const auto& s) { return s.pid == pid; });
+    const auto it =
+        std::find_if(samples.begin(), samples.end(), [&](const auto& s) { return s.pid == pid; });
     if (it != samples.end() && it->state == 'S') break;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }

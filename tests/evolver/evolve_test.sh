@@ -126,14 +126,22 @@ if ! ci_tier_only "local workers starved of CPU by busy loops"; then
 # run until the evolver has said it waits (at most 60 s each).
 starve="--scenario gait --hormones 3 --rules 6 --population 8 --generations 4 --duration 200 --seed 13 --lcm-url $url"
 $E $starve --out $tmp/fed --workers 2 >/dev/null 2>&1 || fail "uninterrupted 200-s run"
-$E $starve --out $tmp/starved --workers 2 --worker-wait 2 >$tmp/starved.out 2>&1 &
-pid=$!
-for _ in $(seq 1 600); do [[ $(wc -l 2>/dev/null <$tmp/starved/generations.csv || echo 0) -gt 1 ]] && break; sleep 0.01; done
-for k in $(pgrep -P $pid); do chrt --idle -p 0 $k >/dev/null || fail "chrt --idle"; done
 hogs=()
 for _ in 1 2 3 4 5 6; do
   bash -c 'end=$((SECONDS + 60)); while ((SECONDS < end)); do :; done' & hogs+=($!)
 done
+$E $starve --out $tmp/starved --workers 2 --worker-wait 2 >$tmp/starved.out 2>&1 &
+pid=$!
+# Its workers idle-class as soon as they exist (an episode takes them about 0.5 s beside the
+# busy loops at normal priority, so none ends before).
+workers=""
+for _ in $(seq 1 500); do
+  workers=$(pgrep -P $pid -f ahhs-worker | tr '\n' ' ')
+  [[ $(wc -w <<<"$workers") == 2 ]] && break
+  sleep 0.01
+done
+[[ $(wc -w <<<"$workers") == 2 ]] || fail "the starved run's two workers: '$workers'"
+for k in $workers; do chrt --idle -p 0 $k >/dev/null || fail "chrt --idle"; done
 for _ in $(seq 1 600); do
   grep -q "waiting for a CPU" $tmp/starved.out && break
   kill -0 $pid 2>/dev/null || break

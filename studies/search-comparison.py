@@ -189,14 +189,14 @@ def held_out(args, setting, run_dir, seed, name, stored):
     def kept(kind):
         return os.path.join(args.out, args.setting, kind, "%s-seed-%d.json" % (name, seed))
     evaluation = stored if stored is not None else post_eval(args.bin, genome, kept("post-eval"))
-    if "replay" not in setting or "beyond_wall_share" in evaluation:
+    if "replay" not in setting:
         return evaluation
-    again = report_lib.replay_post_eval(args.bin, ["--genome", genome] + setting["replay"],
-                                        evaluation, kept("beyond-wall"), reuse=True)
-    if again is None:
-        raise SystemExit("%s: its post-evaluation does not replay bit for bit with %s"
-                         % (genome, args.bin))
-    return dict(evaluation, beyond_wall_share=float(again["beyond_wall_share"]))
+    share, source = report_lib.beyond_wall_share(
+        args.bin, ["--genome", genome] + setting["replay"], evaluation, kept("beyond-wall"),
+        reuse=True)
+    if share is None:
+        raise SystemExit("%s: %s (%s)" % (genome, source, args.bin))
+    return dict(evaluation, beyond_wall_share=share)
 
 
 def report(args):

@@ -658,6 +658,20 @@ def replay_post_eval(bin_dir, replay_argv, post, out_json, reuse=False):
     return again if stored == replayed else None
 
 
+def beyond_wall_share(bin_dir, replay_argv, post, out_json, reuse=False):
+    """(share, source) for a post-evaluated gait genome: the share of its held-out episodes that
+    end with every module half beyond the wall's outer face (docs/evolution.md, "Held-out
+    post-evaluation"). From the post-evaluation `post` when that counted them ("stored"); else
+    from this build's post-evaluation on the same episodes (replay_post_eval), taken only when it
+    replays bit for bit ("replayed"). (None, why) when it does not."""
+    if "beyond_wall_share" in post:
+        return float(post["beyond_wall_share"]), "stored"
+    again = replay_post_eval(bin_dir, replay_argv, post, out_json, reuse)
+    if again is None or "beyond_wall_share" not in again:
+        return None, "its post-evaluation does not replay bit for bit with this build"
+    return float(again["beyond_wall_share"]), "replayed"
+
+
 def filmstrip(bin_dir, log, png, written):
     """8 frames of the replayed episode in one PNG (ahhs-view with headless Chromium); what was
     done, for summary.md."""

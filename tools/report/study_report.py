@@ -32,9 +32,9 @@ from collections import OrderedDict
 import numpy as np
 
 from claims_lib import VERDICTS, fmt, merge_claims
-from report_lib import (ReportError, Run, UsageError, box_figure, find_bin, prepare_out,
-                        robust_sources_text, rule_edges, rule_parts, replay_post_eval,
-                        run_replay, scenario_label_of)
+from report_lib import (ReportError, Run, UsageError, beyond_wall_share, box_figure, find_bin,
+                        prepare_out, robust_sources_text, rule_edges, rule_parts, run_replay,
+                        scenario_label_of)
 from run_report import report_neighbourhood, report_runs
 
 SELDOM = 0.01  # a rule part active in fewer ticks than this triggers "seldom"
@@ -204,13 +204,8 @@ def beyond_wall_of(bin_dir, run, scratch):
         os.path.join(run.path, "summary.json")) else None
     if not post or not post.get("per_episode"):
         return None, "no post-evaluation"
-    if "beyond_wall_share" in post:
-        return float(post["beyond_wall_share"]), "stored"
-    again = replay_post_eval(bin_dir, run.replay_argv(), post,
+    return beyond_wall_share(bin_dir, run.replay_argv(), post,
                              os.path.join(scratch, "post-eval.json"))
-    if again is None or "beyond_wall_share" not in again:
-        return None, "its post-evaluation does not replay bit for bit with this build"
-    return float(again["beyond_wall_share"]), "replayed"
 
 
 def beyond_wall(bin_dir, config, scratch):

@@ -271,8 +271,8 @@ def box_figure(groups, values, ylabel, title, name, out_dir, written, integer=Fa
                 ax.plot([i + 1, j + 1], [y, y], color="black", lw=0.8)
                 ax.text((i + j + 2) / 2, y, f"p = {p:.3g}", ha="center", va="bottom", fontsize=8)
                 k += 1
-    # Wrapped to the figure's width (about 11 characters per inch at 10 points): a narrow
-    # figure of two boxes would cut a long title off.
+    # Wrapped to the figure's width (about 11 characters per inch at 10 points): unwrapped, a
+    # long title widened a figure of two boxes into mostly white space.
     fig.suptitle(textwrap.fill(title, int(11 * width * len(scenarios))), fontsize=10)
     fig.tight_layout()
     save(fig, out_dir, name, written)
